@@ -1,0 +1,16 @@
+# dexlab: the API and a local worker pool on the embedded SQLite store.
+FROM python:3.11-slim
+
+ENV PYTHONDONTWRITEBYTECODE=1 PYTHONUNBUFFERED=1 MPLCONFIGDIR=/tmp/matplotlib
+WORKDIR /app
+COPY pyproject.toml README.md ./
+COPY service ./service
+COPY worker ./worker
+RUN pip install --no-cache-dir .
+
+RUN useradd --create-home dexlab && mkdir /data && chown dexlab /data
+USER dexlab
+VOLUME /data
+EXPOSE 8000
+HEALTHCHECK --interval=30s --timeout=5s CMD python -c "import urllib.request; urllib.request.urlopen('http://127.0.0.1:8000/health/live')"
+CMD ["dexlab", "serve", "--host", "0.0.0.0", "--port", "8000", "--data-dir", "/data"]

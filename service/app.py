@@ -1,0 +1,93 @@
+"""The FastAPI application factory; resources are built in the lifespan, never at import."""
+
+from __future__ import annotations
+
+import logging
+from collections.abc import AsyncIterator
+from contextlib import asynccontextmanager
+from typing import Any
+
+from fastapi import FastAPI
+from fastapi.responses import JSONResponse
+
+from service.config import ServiceSettings
+from service.errors import install_error_handlers, problem_response
+from service.problems import PROBLEM_TYPES
+from service.routes import health, jobs, processes
+from worker.pool import WorkerPool
+from worker.processes import default_registry
+from worker.store import open_store
+
+__all__ = ["create_app"]
+
+log = logging.getLogger("dexlab.service")
+
+DESCRIPTION = """\
+Manipulator kinematic-design jobs: dexterity maps, conditioning maps and optimum
+designs, run by a worker pool and kept with their data files and plots by job ID.
+
+1. `GET /v1/processes` lists the job kinds; `GET /v1/processes/{processID}` gives the
+   input schema, the paper's worked examples and the cost limits.
+2. `POST /v1/processes/{processID}/execution` with `{"inputs": {...}}` returns `201` and
+   `Location: /v1/jobs/{jobID}`.
+3. Poll `GET /v1/jobs/{jobID}` until `status` is `successful`, then fetch
+   `GET /v1/jobs/{jobID}/results` and each artifact's `href`.
+
+Every error is an RFC 9457 `application/problem+json` document.
+"""
+
+
+def create_app(settings: ServiceSettings | None = None) -> FastAPI:
+    """Build the app.  The store opens and the pool starts when the app starts."""
+    settings = settings or ServiceSettings()
+
+    @asynccontextmanager
+    async def lifespan(app: FastAPI) -> AsyncIterator[None]:
+        store = open_store(settings.resolved_store_url())
+        pool = WorkerPool(settings, store) if settings.workers > 0 else None
+        app.state.settings = settings
+        app.state.store = store
+        app.state.registry = default_registry()
+        app.state.pool = pool
+        if pool is not None:
+            pool.start()
+        try:
+            yield
+        finally:
+            if pool is not None:
+                pool.stop()
+
+    app = FastAPI(
+        title="dexlab",
+        version="0.1.0",
+        description=DESCRIPTION,
+        lifespan=lifespan,
+    )
+    install_error_handlers(app)
+    app.include_router(processes.router)
+    app.include_router(jobs.router)
+    app.include_router(health.router)
+
+    @app.get("/", tags=["meta"], summary="Landing page")
+    def landing() -> dict[str, Any]:
+        return {
+            "title": "dexlab",
+            "description": "Manipulator kinematic-design service",
+            "links": [
+                {"href": "/v1/processes", "rel": "processes", "type": "application/json"},
+                {"href": "/v1/jobs", "rel": "jobs", "type": "application/json"},
+                {"href": "/docs", "rel": "service-doc", "type": "text/html"},
+                {"href": "/openapi.json", "rel": "service-desc",
+                 "type": "application/vnd.oai.openapi+json;version=3.0"},
+            ],
+        }
+
+    @app.get("/problems/{slug}", tags=["meta"], summary="What a problem type means")
+    def problem_type(slug: str) -> JSONResponse:
+        if slug not in PROBLEM_TYPES:
+            return problem_response("not-found", detail=f"No problem type {slug!r}.")
+        status, title, description = PROBLEM_TYPES[slug]
+        return JSONResponse({"type": f"/problems/{slug}", "title": title, "status": status,
+                             "description": description})
+
+    return app

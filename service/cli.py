@@ -1,0 +1,87 @@
+"""The ``dexlab`` command: ``dexlab serve`` (API + local pool) and ``dexlab worker``."""
+
+from __future__ import annotations
+
+import argparse
+import logging
+import signal
+import threading
+from collections.abc import Sequence
+from pathlib import Path
+from typing import Any
+
+__all__ = ["main"]
+
+
+def _common(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument("--data-dir", type=Path, help="where the SQLite store lives (./data)")
+    parser.add_argument("--store-url", help="job store URL (default sqlite:///<data-dir>/jobs.db)")
+    parser.add_argument(
+        "--workers", type=int, help="worker processes (default: the CPU count; 0: none)"
+    )
+    parser.add_argument("--log-level", default=None, help="debug, info, warning, error")
+
+
+def _parser() -> argparse.ArgumentParser:
+    parser = argparse.ArgumentParser(
+        prog="dexlab", description="Manipulator kinematic-design service."
+    )
+    sub = parser.add_subparsers(dest="command", required=True)
+    serve = sub.add_parser("serve", help="run the HTTP API with a local worker pool")
+    serve.add_argument("--host", help="address to bind (127.0.0.1)")
+    serve.add_argument("--port", type=int, help="port to listen on (8000)")
+    _common(serve)
+    worker = sub.add_parser("worker", help="run the worker pool alone against a store")
+    _common(worker)
+    return parser
+
+
+def _overrides(args: argparse.Namespace, names: Sequence[str]) -> dict[str, Any]:
+    return {n: getattr(args, n) for n in names if getattr(args, n, None) is not None}
+
+
+def _serve(args: argparse.Namespace) -> None:
+    import uvicorn
+
+    from service.app import create_app
+    from service.config import ServiceSettings
+
+    settings = ServiceSettings(
+        **_overrides(args, ("host", "port", "data_dir", "store_url", "workers", "log_level"))
+    )
+    logging.basicConfig(level=settings.log_level.upper(),
+                        format="%(asctime)s %(process)d %(name)s %(levelname)s %(message)s")
+    uvicorn.run(create_app(settings), host=settings.host, port=settings.port,
+                log_level=settings.log_level.lower())
+
+
+def _worker(args: argparse.Namespace) -> None:
+    from worker.pool import WorkerPool
+    from worker.settings import WorkerSettings
+    from worker.store import open_store
+
+    settings = WorkerSettings(**_overrides(args, ("data_dir", "store_url", "workers")))
+    logging.basicConfig(level=(args.log_level or "info").upper(),
+                        format="%(asctime)s %(process)d %(name)s %(levelname)s %(message)s")
+    if settings.workers < 1:
+        raise SystemExit("dexlab worker: --workers must be at least 1")
+    store = open_store(settings.resolved_store_url())
+    pool = WorkerPool(settings, store)
+    stop = threading.Event()
+    signal.signal(signal.SIGTERM, lambda *_: stop.set())
+    signal.signal(signal.SIGINT, lambda *_: stop.set())
+    pool.start()
+    stop.wait()
+    pool.stop()
+
+
+def main(argv: Sequence[str] | None = None) -> None:
+    args = _parser().parse_args(argv)
+    if args.command == "serve":
+        _serve(args)
+    else:
+        _worker(args)
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,40 @@
+"""FastAPI dependencies: the resources the lifespan built, handed to route handlers."""
+
+from __future__ import annotations
+
+from typing import Annotated
+
+from fastapi import Depends, Request
+
+from service.config import ServiceSettings
+from worker.pool import WorkerPool
+from worker.processes import ProcessRegistry
+from worker.store.base import JobStore
+
+__all__ = ["PoolDep", "RegistryDep", "SettingsDep", "StoreDep"]
+
+
+def get_store(request: Request) -> JobStore:
+    store: JobStore = request.app.state.store
+    return store
+
+
+def get_registry(request: Request) -> ProcessRegistry:
+    registry: ProcessRegistry = request.app.state.registry
+    return registry
+
+
+def get_settings(request: Request) -> ServiceSettings:
+    settings: ServiceSettings = request.app.state.settings
+    return settings
+
+
+def get_pool(request: Request) -> WorkerPool | None:
+    pool: WorkerPool | None = request.app.state.pool
+    return pool
+
+
+StoreDep = Annotated[JobStore, Depends(get_store)]
+RegistryDep = Annotated[ProcessRegistry, Depends(get_registry)]
+SettingsDep = Annotated[ServiceSettings, Depends(get_settings)]
+PoolDep = Annotated[WorkerPool | None, Depends(get_pool)]

@@ -1,0 +1,72 @@
+"""Shaping stored records into the JSON documents the API returns (OGC API - Processes)."""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from datetime import datetime
+from typing import Any
+
+from worker.contract import JobRecord, JobStatus
+
+__all__ = ["job_href", "results_document", "status_document"]
+
+
+def _iso(value: datetime | None) -> str | None:
+    return None if value is None else value.isoformat().replace("+00:00", "Z")
+
+
+def job_href(job_id: str) -> str:
+    return f"/v1/jobs/{job_id}"
+
+
+def status_document(job: JobRecord) -> dict[str, Any]:
+    """``GET /v1/jobs/{jobID}``: where the job is, with links."""
+    links = [
+        {"href": job_href(job.job_id), "rel": "self", "type": "application/json",
+         "title": "this status document"},
+        {"href": f"/v1/processes/{job.process_id}", "rel": "process",
+         "type": "application/json", "title": "the process description"},
+    ]
+    if job.status is JobStatus.SUCCESSFUL:
+        links.append({"href": f"{job_href(job.job_id)}/results", "rel": "results",
+                      "type": "application/json", "title": "the result document"})
+    doc: dict[str, Any] = {
+        "jobID": job.job_id,
+        "processID": job.process_id,
+        "type": "process",
+        "status": job.status.value,
+        "progress": round(job.progress),
+        "message": job.message,
+        "created": _iso(job.created),
+        "started": _iso(job.started),
+        "finished": _iso(job.finished),
+        "updated": _iso(job.updated),
+        "attempts": job.attempts,
+        "max_attempts": job.max_attempts,
+        "time_limit_s": job.time_limit_s,
+        "worker_id": job.worker_id,
+        "links": links,
+    }
+    if job.status is JobStatus.FAILED and job.error is not None:
+        doc["error"] = {k: job.error[k] for k in ("type", "title", "detail") if k in job.error}
+    return doc
+
+
+def results_document(job: JobRecord, result: Mapping[str, Any]) -> dict[str, Any]:
+    """``GET /v1/jobs/{jobID}/results``: the result and every artifact's link."""
+    base = job_href(job.job_id)
+    return {
+        "jobID": job.job_id,
+        "processID": job.process_id,
+        "result": dict(result),
+        "artifacts": [
+            {"name": a.name, "media_type": a.media_type, "title": a.title, "size": a.size,
+             "href": f"{base}/results/{a.name}"}
+            for a in job.artifacts
+        ],
+        "links": [
+            {"href": f"{base}/results", "rel": "self", "type": "application/json"},
+            {"href": base, "rel": "up", "type": "application/json",
+             "title": "the job's status"},
+        ],
+    }

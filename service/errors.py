@@ -1,0 +1,137 @@
+"""The one place exceptions become HTTP responses: RFC 9457 problem documents."""
+
+from __future__ import annotations
+
+import logging
+from typing import Any
+
+from fastapi import FastAPI, Request
+from fastapi.exceptions import RequestValidationError
+from fastapi.responses import JSONResponse
+from starlette.exceptions import HTTPException as StarletteHTTPException
+
+from service.problems import PROBLEM_TYPES, problem_type_uri
+from worker.errors import (
+    CostLimitExceeded,
+    DexlabError,
+    IdempotencyConflict,
+    InvalidInputs,
+    JobDismissed,
+    JobFailed,
+    NoSuchArtifact,
+    NoSuchJob,
+    NoSuchProcess,
+    ResultNotReady,
+    StoreUnavailable,
+)
+
+__all__ = ["install_error_handlers", "problem_response"]
+
+log = logging.getLogger("dexlab.service")
+
+PROBLEM_JSON = "application/problem+json"
+
+_SLUGS: dict[type[DexlabError], str] = {
+    InvalidInputs: "invalid-inputs",
+    CostLimitExceeded: "cost-limit-exceeded",
+    IdempotencyConflict: "idempotency-conflict",
+    NoSuchProcess: "no-such-process",
+    NoSuchJob: "no-such-job",
+    NoSuchArtifact: "no-such-artifact",
+    ResultNotReady: "result-not-ready",
+    JobDismissed: "job-dismissed",
+    JobFailed: "job-failed",
+    StoreUnavailable: "store-unavailable",
+}
+
+
+def problem_response(
+    slug: str,
+    *,
+    detail: str,
+    instance: str | None = None,
+    status: int | None = None,
+    title: str | None = None,
+    headers: dict[str, str] | None = None,
+    **extra: Any,
+) -> JSONResponse:
+    """A problem+json response of a known problem type."""
+    default_status, default_title, _ = PROBLEM_TYPES.get(slug, PROBLEM_TYPES["internal-error"])
+    body: dict[str, Any] = {
+        "type": problem_type_uri(slug),
+        "title": title or default_title,
+        "status": status or default_status,
+        "detail": detail,
+    }
+    if instance:
+        body["instance"] = instance
+    body.update(extra)
+    return JSONResponse(body, status_code=body["status"], media_type=PROBLEM_JSON,
+                        headers=headers)
+
+
+def _request_errors(exc: RequestValidationError) -> list[dict[str, Any]]:
+    errors = []
+    for err in exc.errors():
+        loc = [str(p) for p in err.get("loc", ())]
+        if loc and loc[0] == "body":
+            loc = loc[1:] or ["body"]
+        field = ""
+        for part in loc:
+            field += f"[{part}]" if part.isdigit() else (f".{part}" if field else part)
+        errors.append({"field": field, "message": err.get("msg", ""), "type": err.get("type")})
+    return errors
+
+
+def install_error_handlers(app: FastAPI) -> None:
+    """Map every exception to a problem document."""
+
+    @app.exception_handler(DexlabError)
+    async def _dexlab(request: Request, exc: DexlabError) -> JSONResponse:
+        slug = _SLUGS.get(type(exc), "internal-error")
+        extra: dict[str, Any] = dict(exc.extra)
+        if isinstance(exc, InvalidInputs):
+            extra["errors"] = exc.errors
+        if isinstance(exc, JobFailed) and "error" in exc.extra:
+            error = dict(exc.extra["error"])
+            slug = str(error.get("type", "job-failed"))
+            extra = {"jobID": exc.extra.get("jobID")}
+            return problem_response(
+                slug if slug in PROBLEM_TYPES else "job-failed",
+                detail=str(error.get("detail", exc.detail)),
+                title=error.get("title"),
+                instance=str(request.url.path),
+                **extra,
+            )
+        return problem_response(slug, detail=exc.detail, instance=str(request.url.path), **extra)
+
+    @app.exception_handler(RequestValidationError)
+    async def _validation(request: Request, exc: RequestValidationError) -> JSONResponse:
+        errors = _request_errors(exc)
+        first = errors[0] if errors else {"field": "body", "message": "invalid"}
+        detail = f"Invalid value for '{first['field']}': {first['message']}"
+        if len(errors) > 1:
+            detail += f" (and {len(errors) - 1} more problem(s))"
+        return problem_response(
+            "invalid-request", detail=detail, instance=str(request.url.path), errors=errors
+        )
+
+    @app.exception_handler(StarletteHTTPException)
+    async def _http(request: Request, exc: StarletteHTTPException) -> JSONResponse:
+        slug = {404: "not-found", 405: "method-not-allowed"}.get(exc.status_code, "internal-error")
+        return problem_response(
+            slug,
+            detail=str(exc.detail),
+            status=exc.status_code,
+            instance=str(request.url.path),
+            headers=dict(exc.headers) if exc.headers else None,
+        )
+
+    @app.exception_handler(Exception)
+    async def _unexpected(request: Request, exc: Exception) -> JSONResponse:
+        log.exception("unhandled error on %s", request.url.path)
+        return problem_response(
+            "internal-error",
+            detail=f"An unexpected error occurred ({type(exc).__name__}); it was logged.",
+            instance=str(request.url.path),
+        )

@@ -1,0 +1,50 @@
+"""RFC 9457 problem types served by dexlab: slug -> (HTTP status, title, description)."""
+
+from __future__ import annotations
+
+__all__ = ["PROBLEM_TYPES", "problem_type_uri"]
+
+PROBLEM_TYPES: dict[str, tuple[int, str, str]] = {
+    "invalid-inputs": (
+        422, "Invalid inputs",
+        "The process inputs failed validation; `errors` names every bad field.",
+    ),
+    "invalid-request": (
+        422, "Invalid request",
+        "The request body, a query parameter or a header is malformed; `errors` names it.",
+    ),
+    "cost-limit-exceeded": (
+        422, "Cost limit exceeded",
+        "The requested work exceeds the process's documented cost limit "
+        "(see `limits` at GET /v1/processes/{processID}); nothing was queued.",
+    ),
+    "idempotency-conflict": (
+        422, "Idempotency-Key reused",
+        "The Idempotency-Key was used before with a different request body.",
+    ),
+    "no-such-process": (404, "No such process", "No process has this ID."),
+    "no-such-job": (404, "No such job", "No job has this ID."),
+    "no-such-artifact": (404, "No such artifact", "The job has no artifact with this name."),
+    "result-not-ready": (
+        404, "Result not ready", "The job has not finished yet; poll GET /v1/jobs/{jobID}.",
+    ),
+    "job-dismissed": (410, "Job dismissed", "The job was dismissed; its results are gone."),
+    "job-failed": (500, "Job failed", "The job failed; `detail` says why."),
+    "job-error": (500, "The job raised an error", "The job's code raised an exception."),
+    "time-limit-exceeded": (
+        500, "Time limit exceeded", "The job ran longer than its time limit and was stopped.",
+    ),
+    "worker-lost": (
+        500, "Worker lost", "The worker running the job died on every allowed attempt.",
+    ),
+    "store-unavailable": (503, "Job store unavailable", "The job store does not answer."),
+    "not-ready": (503, "Not ready", "The store or the worker pool is not up."),
+    "not-found": (404, "Not found", "No resource at this path."),
+    "method-not-allowed": (405, "Method not allowed", "This path does not accept this method."),
+    "internal-error": (500, "Internal error", "An unexpected error; it was logged."),
+}
+
+
+def problem_type_uri(slug: str) -> str:
+    """The problem type URI (relative, dereferenceable on this service)."""
+    return f"/problems/{slug}"

@@ -1,0 +1,110 @@
+"""``/v1/jobs``: status, listing, results, artifacts and dismissal."""
+
+from __future__ import annotations
+
+from typing import Annotated, Any
+
+from fastapi import APIRouter, Query, Response
+
+from service.deps import StoreDep
+from service.documents import results_document, status_document
+from worker.contract import JobRecord, JobStatus
+from worker.errors import (
+    InvalidInputs,
+    JobDismissed,
+    JobFailed,
+    NoSuchArtifact,
+    NoSuchJob,
+    ResultNotReady,
+)
+from worker.store.base import JobStore
+
+__all__ = ["router"]
+
+router = APIRouter(prefix="/v1/jobs", tags=["jobs"])
+
+
+def _job(store: JobStore, job_id: str) -> JobRecord:
+    job = store.get_job(job_id)
+    if job is None:
+        raise NoSuchJob(f"No job {job_id!r}.")
+    return job
+
+
+@router.get("", summary="List jobs, newest first")
+def list_jobs(
+    store: StoreDep,
+    limit: Annotated[int, Query(ge=1, le=1000)] = 20,
+    cursor: Annotated[str | None, Query(max_length=200)] = None,
+    status: Annotated[JobStatus | None, Query()] = None,
+    process_id: Annotated[str | None, Query(alias="processID", max_length=200)] = None,
+) -> dict[str, Any]:
+    try:
+        page = store.list_jobs(limit=limit, cursor=cursor, status=status, process_id=process_id)
+    except ValueError as exc:
+        raise InvalidInputs([{"field": "cursor", "message": str(exc), "type": "value_error"}],
+                            ) from exc
+    links = [{"href": "/v1/jobs", "rel": "self", "type": "application/json"}]
+    if page.next_cursor:
+        query = f"limit={limit}&cursor={page.next_cursor}"
+        if status is not None:
+            query += f"&status={status.value}"
+        if process_id is not None:
+            query += f"&processID={process_id}"
+        links.append({"href": f"/v1/jobs?{query}", "rel": "next", "type": "application/json"})
+    return {
+        "jobs": [status_document(j) for j in page.jobs],
+        "next_cursor": page.next_cursor,
+        "links": links,
+    }
+
+
+@router.get("/{job_id}", summary="A job's status")
+def get_job(job_id: str, store: StoreDep) -> dict[str, Any]:
+    return status_document(_job(store, job_id))
+
+
+@router.delete("/{job_id}", summary="Dismiss a job (stops a running attempt's process)")
+def dismiss_job(job_id: str, store: StoreDep) -> dict[str, Any]:
+    job = store.dismiss(job_id)
+    if job is None:
+        raise NoSuchJob(f"No job {job_id!r}.")
+    return status_document(job)
+
+
+def _finished(store: JobStore, job_id: str) -> JobRecord:
+    """The job if it succeeded; otherwise the problem that says why it has no results."""
+    job = _job(store, job_id)
+    if job.status is JobStatus.FAILED:
+        raise JobFailed(jobID=job.job_id, error=dict(job.error or {}))
+    if job.status is JobStatus.DISMISSED:
+        raise JobDismissed(f"Job {job_id} was dismissed; it has no results.")
+    if job.status is not JobStatus.SUCCESSFUL:
+        raise ResultNotReady(
+            f"Job {job_id} is {job.status.value} ({round(job.progress)}%); poll /v1/jobs/{job_id}."
+        )
+    return job
+
+
+@router.get("/{job_id}/results", summary="The result document with links to every artifact")
+def get_results(job_id: str, store: StoreDep) -> dict[str, Any]:
+    job = _finished(store, job_id)
+    result = store.get_result(job_id)
+    if result is None:  # dismissed between the two reads
+        raise JobDismissed(f"Job {job_id} was dismissed; it has no results.")
+    return results_document(job, result)
+
+
+@router.get("/{job_id}/results/{name}", summary="Download one artifact (PNG, SVG, CSV, NPZ)")
+def get_artifact(job_id: str, name: str, store: StoreDep) -> Response:
+    job = _finished(store, job_id)
+    artifact = store.get_artifact(job_id, name)
+    if artifact is None:
+        names = ", ".join(a.name for a in job.artifacts)
+        raise NoSuchArtifact(f"Job {job_id} has no artifact {name!r}; it has: {names}.")
+    return Response(
+        artifact.data,
+        media_type=artifact.media_type,
+        headers={"Content-Disposition": f'inline; filename="{artifact.name}"',
+                 "Cache-Control": "public, max-age=31536000, immutable"},
+    )

@@ -1,0 +1,73 @@
+"""``/v1/processes``: what the service can run, and submitting jobs."""
+
+from __future__ import annotations
+
+from typing import Annotated, Any
+
+from fastapi import APIRouter, Header, Response
+from pydantic import BaseModel, ConfigDict, Field
+
+from service.deps import RegistryDep, SettingsDep, StoreDep
+from service.documents import job_href, status_document
+from worker.errors import NoSuchProcess
+from worker.submission import submit
+
+__all__ = ["router"]
+
+router = APIRouter(prefix="/v1/processes", tags=["processes"])
+
+
+class ExecuteRequest(BaseModel):
+    """The body of an execution request."""
+
+    model_config = ConfigDict(extra="forbid")
+
+    inputs: dict[str, Any] = Field(..., description="The process inputs (see its schema).")
+
+
+@router.get("", summary="List the processes")
+def list_processes(registry: RegistryDep) -> dict[str, Any]:
+    return {
+        "processes": [
+            {**d.summary(), "links": [{"href": f"/v1/processes/{d.id}", "rel": "self",
+                                       "type": "application/json"}]}
+            for d in registry
+        ],
+        "links": [{"href": "/v1/processes", "rel": "self", "type": "application/json"}],
+    }
+
+
+@router.get("/{process_id}", summary="Describe a process: inputs schema, examples, limits")
+def describe_process(process_id: str, registry: RegistryDep) -> dict[str, Any]:
+    definition = registry.get(process_id)
+    if definition is None:
+        raise NoSuchProcess(f"No process {process_id!r}; available: {', '.join(registry.ids())}.")
+    doc = definition.describe()
+    doc["links"] = [
+        {"href": f"/v1/processes/{process_id}/execution", "rel": "http://www.opengis.net/def/"
+         "rel/ogc/1.0/execute", "type": "application/json", "title": "POST to run it"},
+    ]
+    return doc
+
+
+@router.post(
+    "/{process_id}/execution",
+    status_code=201,
+    summary="Submit a job (committed before the response)",
+)
+def execute(
+    process_id: str,
+    body: ExecuteRequest,
+    response: Response,
+    store: StoreDep,
+    registry: RegistryDep,
+    settings: SettingsDep,
+    idempotency_key: Annotated[
+        str | None, Header(alias="Idempotency-Key", min_length=1, max_length=255)
+    ] = None,
+) -> dict[str, Any]:
+    job, created = submit(store, registry, settings, process_id, body.inputs, idempotency_key)
+    response.headers["Location"] = job_href(job.job_id)
+    if not created:
+        response.headers["Idempotent-Replayed"] = "true"
+    return status_document(job)

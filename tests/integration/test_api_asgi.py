@@ -1,0 +1,219 @@
+"""The HTTP API over httpx's ASGI transport, with the real store and a real pool process."""
+
+from __future__ import annotations
+
+import asyncio
+import time
+from typing import Any
+
+import httpx
+import pytest
+
+pytestmark = [pytest.mark.integration, pytest.mark.anyio]
+
+SMALL_MAP = {"links": [15, 14, 8], "grid": {"points_per_axis": 21}}
+PROBLEM = "application/problem+json"
+
+
+async def poll(client: httpx.AsyncClient, job_id: str, timeout: float = 90) -> dict[str, Any]:
+    deadline = time.monotonic() + timeout
+    while time.monotonic() < deadline:
+        doc: dict[str, Any] = (await client.get(f"/v1/jobs/{job_id}")).json()
+        if doc["status"] in {"successful", "failed", "dismissed"}:
+            return doc
+        await asyncio.sleep(0.1)
+    raise AssertionError(f"job {job_id} did not finish")
+
+
+async def test_processes_are_described_with_schema_examples_and_limits(
+    asgi_client: httpx.AsyncClient,
+) -> None:
+    listing = (await asgi_client.get("/v1/processes")).json()
+    ids = [p["id"] for p in listing["processes"]]
+    assert {"planar3r-dexterity-map", "planar3r-synthesis"} <= set(ids)
+    doc = (await asgi_client.get("/v1/processes/planar3r-dexterity-map")).json()
+    assert doc["inputs"]["properties"]["links"]
+    assert doc["inputs"]["additionalProperties"] is False
+    assert doc["examples"] and doc["examples"][0]["inputs"]
+    assert doc["limits"]["cost_limit"] > 0 and "orientation" in doc["limits"]["cost_unit"]
+    assert doc["outputs"]
+
+
+async def test_every_worked_example_validates(asgi_client: httpx.AsyncClient) -> None:
+    """The examples a user copies from the description are accepted as they are."""
+    for pid in ("planar3r-dexterity-map", "planar3r-synthesis"):
+        doc = (await asgi_client.get(f"/v1/processes/{pid}")).json()
+        for example in doc["examples"]:
+            r = await asgi_client.post(
+                f"/v1/processes/{pid}/execution", json={"inputs": example["inputs"]}
+            )
+            assert r.status_code == 201, (pid, example["title"], r.text)
+            await asgi_client.delete(r.headers["Location"])
+
+
+async def test_submit_poll_results_and_artifacts(asgi_client: httpx.AsyncClient) -> None:
+    r = await asgi_client.post(
+        "/v1/processes/planar3r-dexterity-map/execution", json={"inputs": SMALL_MAP}
+    )
+    assert r.status_code == 201, r.text
+    job_id = r.json()["jobID"]
+    assert r.headers["Location"] == f"/v1/jobs/{job_id}"
+    assert r.json()["status"] in {"accepted", "running"}
+    status = await poll(asgi_client, job_id)
+    assert status["status"] == "successful", status
+    assert status["progress"] == 100 and status["finished"] and status["started"]
+    results = (await asgi_client.get(f"/v1/jobs/{job_id}/results")).json()
+    assert results["jobID"] == job_id
+    assert results["result"]["method"] == "exact-closed-form"
+    names = {a["name"]: a for a in results["artifacts"]}
+    assert {"heatmap.png", "heatmap.svg", "dexterity_map.csv", "dexterity_map.npz"} <= set(names)
+    png = await asgi_client.get(names["heatmap.png"]["href"])
+    assert png.status_code == 200 and png.headers["content-type"] == "image/png"
+    assert png.content.startswith(b"\x89PNG")
+    csv = await asgi_client.get(names["dexterity_map.csv"]["href"])
+    assert csv.headers["content-type"].startswith("text/csv")
+    assert len(csv.text.strip().splitlines()) == 1 + 21 * 21
+    missing = await asgi_client.get(f"/v1/jobs/{job_id}/results/nope.png")
+    assert missing.status_code == 404 and missing.headers["content-type"] == PROBLEM
+
+
+async def test_invalid_inputs_name_the_field(asgi_client: httpx.AsyncClient) -> None:
+    cases = [
+        ({"links": [15, -14, 8]}, "inputs.links[1]"),
+        ({"links": [15, 14]}, "inputs.links"),
+        ({"links": [15, 14, 8], "colour": "red"}, "inputs.colour"),
+        ({"links": [15, 14, 8], "grid": {"points_per_axis": 5000}}, "inputs.grid.points_per_axis"),
+        ({"links": [15, 14, 8], "joint_limits_deg": [[0, 10], [20, 10], [0, 1]]},
+         "inputs.joint_limits_deg"),
+    ]
+    for inputs, field in cases:
+        r = await asgi_client.post(
+            "/v1/processes/planar3r-dexterity-map/execution", json={"inputs": inputs}
+        )
+        assert r.status_code == 422, (inputs, r.text)
+        assert r.headers["content-type"] == PROBLEM
+        body = r.json()
+        assert body["type"].endswith("/invalid-inputs") and body["status"] == 422
+        fields = [e["field"] for e in body["errors"]]
+        assert any(f.startswith(field) for f in fields), (inputs, fields)
+        assert field.split("[")[0] in body["detail"]
+    listing = (await asgi_client.get("/v1/jobs")).json()
+    assert listing["jobs"] == []  # nothing was queued
+
+
+async def test_malformed_body_is_a_problem(asgi_client: httpx.AsyncClient) -> None:
+    r = await asgi_client.post(
+        "/v1/processes/planar3r-dexterity-map/execution", json={"links": [1, 2, 3]}
+    )
+    assert r.status_code == 422 and r.headers["content-type"] == PROBLEM
+    assert {e["field"] for e in r.json()["errors"]} >= {"inputs", "links"}
+    r = await asgi_client.post(
+        "/v1/processes/planar3r-dexterity-map/execution", content=b"{not json",
+        headers={"content-type": "application/json"},
+    )
+    assert r.status_code == 422 and r.headers["content-type"] == PROBLEM
+
+
+async def test_cost_limit_refuses_before_queuing(asgi_client: httpx.AsyncClient) -> None:
+    inputs = {
+        "links": [15, 14, 8],
+        "joint_limits_deg": [[-150, 150], [-150, 150], [-175, 175]],
+        "grid": {"points_per_axis": 2001},
+        "orientation_step_deg": 0.1,
+    }
+    r = await asgi_client.post(
+        "/v1/processes/planar3r-dexterity-map/execution", json={"inputs": inputs}
+    )
+    assert r.status_code == 422 and r.headers["content-type"] == PROBLEM
+    body = r.json()
+    assert body["type"].endswith("/cost-limit-exceeded")
+    assert body["cost"] == 2001 * 2001 * 3600 and body["cost"] > body["cost_limit"]
+    assert (await asgi_client.get("/v1/jobs")).json()["jobs"] == []
+
+
+async def test_idempotency_key(asgi_client: httpx.AsyncClient) -> None:
+    url = "/v1/processes/planar3r-dexterity-map/execution"
+    headers = {"Idempotency-Key": "design-42"}
+    first = await asgi_client.post(url, json={"inputs": SMALL_MAP}, headers=headers)
+    again = await asgi_client.post(url, json={"inputs": SMALL_MAP}, headers=headers)
+    assert first.status_code == 201 and again.status_code == 201
+    assert first.json()["jobID"] == again.json()["jobID"]
+    assert again.headers["Idempotent-Replayed"] == "true"
+    other = {**SMALL_MAP, "links": [15, 14, 9]}
+    conflict = await asgi_client.post(url, json={"inputs": other}, headers=headers)
+    assert conflict.status_code == 422
+    assert conflict.json()["type"].endswith("/idempotency-conflict")
+    jobs = (await asgi_client.get("/v1/jobs")).json()["jobs"]
+    assert len(jobs) == 1
+
+
+async def test_unknown_things_are_404_problems(asgi_client: httpx.AsyncClient) -> None:
+    for path, kind in [
+        ("/v1/processes/nope", "no-such-process"),
+        ("/v1/jobs/nope", "no-such-job"),
+        ("/v1/jobs/nope/results", "no-such-job"),
+        ("/v1/nothing-here", "not-found"),
+    ]:
+        r = await asgi_client.get(path)
+        assert r.status_code == 404 and r.headers["content-type"] == PROBLEM, path
+        assert r.json()["type"].endswith(kind), (path, r.json())
+    r = await asgi_client.post("/v1/processes/nope/execution", json={"inputs": {}})
+    assert r.status_code == 404 and r.json()["type"].endswith("no-such-process")
+    r = await asgi_client.delete("/v1/jobs/nope")
+    assert r.status_code == 404
+
+
+async def test_results_not_ready_while_pending(asgi_client: httpx.AsyncClient) -> None:
+    # Two jobs: the second waits behind the first in a one-process pool.
+    url = "/v1/processes/planar3r-dexterity-map/execution"
+    slow = {"links": [15, 14, 8], "grid": {"points_per_axis": 101},
+            "joint_limits_deg": [[-150, 150], [-150, 150], [-175, 175]],
+            "orientation_step_deg": 2}
+    first = (await asgi_client.post(url, json={"inputs": slow})).json()["jobID"]
+    second = (await asgi_client.post(url, json={"inputs": SMALL_MAP})).json()["jobID"]
+    r = await asgi_client.get(f"/v1/jobs/{second}/results")
+    assert r.status_code == 404 and r.json()["type"].endswith("/result-not-ready")
+    # Dismissing a queued job: it never runs and has no results.
+    d = await asgi_client.delete(f"/v1/jobs/{second}")
+    assert d.status_code == 200 and d.json()["status"] == "dismissed"
+    gone = await asgi_client.get(f"/v1/jobs/{second}/results")
+    assert gone.status_code == 410 and gone.json()["type"].endswith("/job-dismissed")
+    assert (await poll(asgi_client, first))["status"] == "successful"
+    assert (await asgi_client.get(f"/v1/jobs/{second}")).json()["status"] == "dismissed"
+
+
+async def test_listing_paginates_and_filters(asgi_client: httpx.AsyncClient) -> None:
+    url = "/v1/processes/planar3r-dexterity-map/execution"
+    ids = []
+    for n in range(5):
+        inputs = {**SMALL_MAP, "links": [15, 14, 8 + n]}
+        ids.append((await asgi_client.post(url, json={"inputs": inputs})).json()["jobID"])
+    page = (await asgi_client.get("/v1/jobs", params={"limit": 2})).json()
+    assert [j["jobID"] for j in page["jobs"]] == ids[::-1][:2]
+    seen = [j["jobID"] for j in page["jobs"]]
+    while page["next_cursor"]:
+        page = (await asgi_client.get(
+            "/v1/jobs", params={"limit": 2, "cursor": page["next_cursor"]})).json()
+        seen += [j["jobID"] for j in page["jobs"]]
+    assert seen == ids[::-1]
+    none = (await asgi_client.get("/v1/jobs", params={"processID": "planar3r-synthesis"})).json()
+    assert none["jobs"] == []
+    bad = await asgi_client.get("/v1/jobs", params={"status": "sleeping"})
+    assert bad.status_code == 422 and bad.json()["errors"][0]["field"] == "query.status"
+    bad = await asgi_client.get("/v1/jobs", params={"cursor": "garbage"})
+    assert bad.status_code == 422 and bad.json()["errors"][0]["field"] == "cursor"
+
+
+async def test_health_and_docs(asgi_client: httpx.AsyncClient) -> None:
+    assert (await asgi_client.get("/health/live")).json()["status"] == "live"
+    deadline = time.monotonic() + 60
+    while True:
+        ready = await asgi_client.get("/health/ready")
+        if ready.status_code == 200 or time.monotonic() > deadline:
+            break
+        await asyncio.sleep(0.2)
+    assert ready.status_code == 200, ready.text
+    assert ready.json()["live_workers"] >= 1
+    assert (await asgi_client.get("/docs")).status_code == 200
+    spec = (await asgi_client.get("/openapi.json")).json()
+    assert "/v1/processes/{process_id}/execution" in spec["paths"]

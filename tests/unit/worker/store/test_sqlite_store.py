@@ -1,0 +1,181 @@
+"""The SQLite job store: claims, leases, fencing, idempotency, listing, dismissal."""
+
+from __future__ import annotations
+
+import time
+from pathlib import Path
+
+import pytest
+
+from worker.contract import Artifact, JobStatus
+from worker.errors import IdempotencyConflict
+from worker.store import open_store
+from worker.store.base import NewJob
+from worker.store.sqlite import SqliteJobStore, decode_cursor, encode_cursor
+
+
+@pytest.fixture
+def store(tmp_path: Path) -> SqliteJobStore:
+    s = open_store(f"sqlite:///{tmp_path / 'jobs.db'}")
+    assert isinstance(s, SqliteJobStore)
+    return s
+
+
+def new_job(process_id: str = "p", max_attempts: int = 3, **kw: object) -> NewJob:
+    return NewJob(process_id=process_id, inputs={"a": 1}, time_limit_s=60.0,
+                  max_attempts=max_attempts, **kw)  # type: ignore[arg-type]
+
+
+def test_create_then_get_roundtrips(store: SqliteJobStore) -> None:
+    job, created = store.create_job(new_job())
+    assert created
+    got = store.get_job(job.job_id)
+    assert got is not None
+    assert got.status is JobStatus.ACCEPTED
+    assert got.inputs == {"a": 1}
+    assert got.created.tzinfo is not None
+    assert store.get_job("nope") is None
+
+
+def test_initialise_is_idempotent_and_keeps_jobs(store: SqliteJobStore) -> None:
+    job, _ = store.create_job(new_job())
+    store.initialise()
+    reopened = open_store(f"sqlite:///{store.path}")
+    assert reopened.get_job(job.job_id) is not None
+
+
+def test_claim_takes_oldest_and_only_once(store: SqliteJobStore) -> None:
+    first, _ = store.create_job(new_job())
+    second, _ = store.create_job(new_job())
+    c1 = store.claim_next("w1", 10)
+    c2 = store.claim_next("w2", 10)
+    assert c1 is not None and c2 is not None
+    assert c1.job.job_id == first.job_id
+    assert c2.job.job_id == second.job_id
+    assert c1.job.status is JobStatus.RUNNING and c1.job.attempts == 1
+    assert store.claim_next("w3", 10) is None
+
+
+def test_complete_stores_result_and_artifacts_then_flips(store: SqliteJobStore) -> None:
+    job, _ = store.create_job(new_job())
+    claim = store.claim_next("w", 10)
+    assert claim is not None
+    art = Artifact("a.png", "image/png", b"\x89PNG data", "plot")
+    assert store.complete(job.job_id, claim.lease_token, {"x": 1.5}, [art])
+    done = store.get_job(job.job_id)
+    assert done is not None and done.status is JobStatus.SUCCESSFUL
+    assert done.progress == 100
+    assert [a.name for a in done.artifacts] == ["a.png"]
+    assert store.get_result(job.job_id) == {"x": 1.5}
+    got = store.get_artifact(job.job_id, "a.png")
+    assert got is not None and got.data == b"\x89PNG data" and got.media_type == "image/png"
+
+
+def test_stale_lease_cannot_write(store: SqliteJobStore) -> None:
+    job, _ = store.create_job(new_job())
+    old = store.claim_next("w-old", 10)
+    assert old is not None
+    assert store.expire_leases_of("w-old") == 1
+    new = store.claim_next("w-new", 10)  # reaps the expired lease, then claims again
+    assert new is not None and new.job.job_id == job.job_id and new.job.attempts == 2
+    assert not store.report_progress(job.job_id, old.lease_token, 50, "stale")
+    assert not store.complete(job.job_id, old.lease_token, {"stale": True}, [])
+    assert not store.fail(job.job_id, old.lease_token, {"detail": "stale"})
+    assert not store.heartbeat(job.job_id, old.lease_token, 10).owner
+    assert store.complete(job.job_id, new.lease_token, {"fresh": True}, [])
+    assert store.get_result(job.job_id) == {"fresh": True}
+
+
+def test_expired_lease_requeues_then_fails_after_max_attempts(store: SqliteJobStore) -> None:
+    job, _ = store.create_job(new_job(max_attempts=2))
+    for attempt in (1, 2):
+        claim = store.claim_next(f"w{attempt}", 0.01)
+        assert claim is not None and claim.job.attempts == attempt
+        time.sleep(0.02)
+    assert store.claim_next("w3", 10) is None
+    failed = store.get_job(job.job_id)
+    assert failed is not None and failed.status is JobStatus.FAILED
+    assert failed.error is not None and failed.error["type"] == "worker-lost"
+    assert "2 allowed" in failed.error["detail"]
+
+
+def test_heartbeat_extends_lease_and_reports_dismissal(store: SqliteJobStore) -> None:
+    job, _ = store.create_job(new_job())
+    claim = store.claim_next("w", 0.05)
+    assert claim is not None
+    assert store.heartbeat(job.job_id, claim.lease_token, 10).owner
+    time.sleep(0.1)
+    assert store.claim_next("w2", 10) is None  # lease was extended, nothing to reap
+    store.dismiss(job.job_id)
+    ack = store.heartbeat(job.job_id, claim.lease_token, 10)
+    assert not ack.owner and ack.status is JobStatus.DISMISSED
+    assert not store.complete(job.job_id, claim.lease_token, {"late": 1}, [])
+
+
+def test_progress_is_fenced_and_clamped(store: SqliteJobStore) -> None:
+    job, _ = store.create_job(new_job())
+    claim = store.claim_next("w", 10)
+    assert claim is not None
+    assert store.report_progress(job.job_id, claim.lease_token, 140, "over")
+    got = store.get_job(job.job_id)
+    assert got is not None and got.progress == 100 and got.message == "over"
+
+
+def test_idempotency_same_body_same_job_other_body_conflict(store: SqliteJobStore) -> None:
+    a, created_a = store.create_job(new_job(idempotency_key="k", request_hash="h1"))
+    b, created_b = store.create_job(new_job(idempotency_key="k", request_hash="h1"))
+    assert created_a and not created_b and a.job_id == b.job_id
+    with pytest.raises(IdempotencyConflict, match="different request body"):
+        store.create_job(new_job(idempotency_key="k", request_hash="h2"))
+
+
+def test_list_newest_first_with_cursor_and_filters(store: SqliteJobStore) -> None:
+    ids = [store.create_job(new_job("p" if i % 2 else "q"))[0].job_id for i in range(5)]
+    page = store.list_jobs(limit=2)
+    assert [j.job_id for j in page.jobs] == ids[::-1][:2]
+    assert page.next_cursor is not None
+    page2 = store.list_jobs(limit=2, cursor=page.next_cursor)
+    assert [j.job_id for j in page2.jobs] == ids[::-1][2:4]
+    last = store.list_jobs(limit=2, cursor=page2.next_cursor)
+    assert [j.job_id for j in last.jobs] == ids[:1] and last.next_cursor is None
+    only_p = store.list_jobs(limit=10, process_id="p")
+    assert {j.process_id for j in only_p.jobs} == {"p"} and len(only_p.jobs) == 2
+    claim = store.claim_next("w", 10)
+    assert claim is not None
+    running = store.list_jobs(limit=10, status=JobStatus.RUNNING)
+    assert [j.job_id for j in running.jobs] == [claim.job.job_id]
+
+
+def test_cursor_roundtrip_and_garbage() -> None:
+    assert decode_cursor(encode_cursor(42)) == 42
+    with pytest.raises(ValueError, match="'cursor' parameter"):
+        decode_cursor("not-a-cursor")
+
+
+def test_dismiss_finished_job_drops_results(store: SqliteJobStore) -> None:
+    job, _ = store.create_job(new_job())
+    claim = store.claim_next("w", 10)
+    assert claim is not None
+    store.complete(job.job_id, claim.lease_token, {"x": 1}, [Artifact("a", "text/csv", b"1")])
+    dismissed = store.dismiss(job.job_id)
+    assert dismissed is not None and dismissed.status is JobStatus.DISMISSED
+    assert store.get_result(job.job_id) is None
+    assert store.get_artifact(job.job_id, "a") is None
+    assert store.dismiss("unknown") is None
+
+
+def test_worker_registry(store: SqliteJobStore) -> None:
+    store.register_worker("h:1", "h", 1)
+    assert [w.worker_id for w in store.live_workers(5)] == ["h:1"]
+    store.unregister_worker("h:1")
+    assert store.live_workers(5) == []
+
+
+def test_result_with_nan_is_refused(store: SqliteJobStore) -> None:
+    job, _ = store.create_job(new_job())
+    claim = store.claim_next("w", 10)
+    assert claim is not None
+    with pytest.raises(ValueError):
+        store.complete(job.job_id, claim.lease_token, {"x": float("nan")}, [])
+    got = store.get_job(job.job_id)
+    assert got is not None and got.status is JobStatus.RUNNING

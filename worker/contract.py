@@ -1,0 +1,105 @@
+"""The job contract shared by the HTTP front end and the workers.
+
+Only plain data lives here: the status enum, the records the store hands out, what a
+job function receives (:class:`JobContext`) and what it returns (:class:`JobOutcome`).
+"""
+
+from __future__ import annotations
+
+import enum
+from collections.abc import Mapping
+from dataclasses import dataclass, field
+from datetime import datetime
+from typing import Any, Protocol
+
+__all__ = [
+    "TERMINAL_STATUSES",
+    "Artifact",
+    "ArtifactInfo",
+    "JobContext",
+    "JobOutcome",
+    "JobRecord",
+    "JobStatus",
+]
+
+
+class JobStatus(enum.StrEnum):
+    """Where a job is in its life (OGC API - Processes status codes)."""
+
+    #: Committed to the store, waiting for a worker to claim it.
+    ACCEPTED = "accepted"
+    #: Claimed by a worker holding a live lease; progress is written back.
+    RUNNING = "running"
+    #: Finished; its result document and artifacts are stored.
+    SUCCESSFUL = "successful"
+    #: Finished without a result: an error, the time limit, or too many lost attempts.
+    FAILED = "failed"
+    #: Cancelled by the client; a running attempt's process is stopped.
+    DISMISSED = "dismissed"
+
+
+TERMINAL_STATUSES = frozenset({JobStatus.SUCCESSFUL, JobStatus.FAILED, JobStatus.DISMISSED})
+
+
+@dataclass(frozen=True)
+class Artifact:
+    """A file a job produced: a plot (PNG/SVG) or data (CSV/NPZ)."""
+
+    name: str
+    media_type: str
+    data: bytes
+    title: str = ""
+
+
+@dataclass(frozen=True)
+class ArtifactInfo:
+    """An artifact's metadata, as listed in a result document."""
+
+    name: str
+    media_type: str
+    size: int
+    title: str = ""
+
+
+@dataclass(frozen=True)
+class JobOutcome:
+    """What a job function returns: the result document and its artifacts.
+
+    ``result`` must be JSON-serialisable (plain dicts, lists, str, float, int, bool,
+    None).  Numerical outcomes (an optimiser that did not converge, a design that leaves
+    a task point short of full dexterity) belong in ``result`` and ``notes``, not in
+    exceptions.
+    """
+
+    result: Mapping[str, Any]
+    artifacts: tuple[Artifact, ...] = ()
+    notes: tuple[str, ...] = ()
+
+
+class JobContext(Protocol):
+    """What a running job may tell the outside world."""
+
+    def report_progress(self, percent: float, message: str = "") -> None:
+        """Record progress (0-100) and a short human-readable message."""
+
+
+@dataclass(frozen=True)
+class JobRecord:
+    """A job as stored.  Times are timezone-aware UTC."""
+
+    job_id: str
+    process_id: str
+    status: JobStatus
+    inputs: Mapping[str, Any]
+    created: datetime
+    updated: datetime
+    progress: float = 0.0
+    message: str = ""
+    started: datetime | None = None
+    finished: datetime | None = None
+    attempts: int = 0
+    max_attempts: int = 3
+    time_limit_s: float = 600.0
+    error: Mapping[str, Any] | None = None
+    worker_id: str | None = None
+    artifacts: tuple[ArtifactInfo, ...] = field(default_factory=tuple)

@@ -1,0 +1,99 @@
+"""Every exception dexlab raises on purpose, in one tree.
+
+::
+
+    DexlabError                     base; never raised itself
+    ├── InvalidInputs               inputs fail validation (names each field)
+    ├── CostLimitExceeded           the requested work exceeds the process's cost limit
+    ├── IdempotencyConflict         an Idempotency-Key reused with another request body
+    ├── NoSuchProcess               unknown process ID
+    ├── NoSuchJob                   unknown job ID
+    ├── NoSuchArtifact              unknown artifact name for a job
+    ├── ResultNotReady              the job has not finished yet
+    ├── JobFailed                   the job finished without a result
+    ├── JobDismissed                the job was dismissed (cancelled)
+    └── StoreUnavailable            the job store cannot be reached
+
+Each class's docstring is its default message.  The HTTP layer maps each class to a
+status code and an RFC 9457 problem type in exactly one place (``service.errors``).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping, Sequence
+from typing import Any
+
+__all__ = [
+    "CostLimitExceeded",
+    "DexlabError",
+    "FieldError",
+    "IdempotencyConflict",
+    "InvalidInputs",
+    "JobDismissed",
+    "JobFailed",
+    "NoSuchArtifact",
+    "NoSuchJob",
+    "NoSuchProcess",
+    "ResultNotReady",
+    "StoreUnavailable",
+]
+
+FieldError = Mapping[str, Any]
+
+
+class DexlabError(Exception):
+    """Something went wrong in dexlab."""
+
+    def __init__(self, detail: str | None = None, **extra: Any) -> None:
+        self.detail = detail or (self.__doc__ or "").strip()
+        self.extra = extra
+        super().__init__(self.detail)
+
+
+class InvalidInputs(DexlabError):
+    """The inputs are not valid for this process."""
+
+    def __init__(self, errors: Sequence[FieldError], detail: str | None = None) -> None:
+        self.errors = list(errors)
+        if detail is None and self.errors:
+            first = self.errors[0]
+            detail = f"Invalid value for '{first['field']}': {first['message']}"
+            if len(self.errors) > 1:
+                detail += f" (and {len(self.errors) - 1} more problem(s))"
+        super().__init__(detail)
+
+
+class CostLimitExceeded(DexlabError):
+    """The requested work exceeds the process's documented cost limit."""
+
+
+class IdempotencyConflict(DexlabError):
+    """This Idempotency-Key was already used with a different request body."""
+
+
+class NoSuchProcess(DexlabError):
+    """No process with this ID."""
+
+
+class NoSuchJob(DexlabError):
+    """No job with this ID."""
+
+
+class NoSuchArtifact(DexlabError):
+    """This job has no artifact with this name."""
+
+
+class ResultNotReady(DexlabError):
+    """The job has not finished yet; poll its status."""
+
+
+class JobFailed(DexlabError):
+    """The job failed."""
+
+
+class JobDismissed(DexlabError):
+    """The job was dismissed; it has no results."""
+
+
+class StoreUnavailable(DexlabError):
+    """The job store cannot be reached."""

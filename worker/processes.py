@@ -1,0 +1,107 @@
+"""The process registry: every job kind the service offers, with its contract.
+
+A process definition ties together the validated input model (pydantic, frozen,
+``extra="forbid"``), the function that runs it, the paper's worked examples, a
+description of its outputs, and its cost limit (checked before anything is queued).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass
+from typing import Any
+
+from pydantic import BaseModel
+
+from worker.contract import JobContext, JobOutcome
+
+__all__ = ["ProcessDefinition", "ProcessExample", "ProcessRegistry", "default_registry"]
+
+
+@dataclass(frozen=True)
+class ProcessExample:
+    """A worked example: the paper's inputs, ready to POST."""
+
+    title: str
+    inputs: Mapping[str, Any]
+    description: str = ""
+
+
+@dataclass(frozen=True)
+class ProcessDefinition:
+    """One job kind.
+
+    ``cost`` maps validated inputs to work units (grid points x orientation samples);
+    a request whose cost exceeds ``cost_limit`` is refused before it is queued.
+    """
+
+    id: str
+    title: str
+    description: str
+    inputs_model: type[BaseModel]
+    run: Callable[[Any, JobContext], JobOutcome]
+    examples: tuple[ProcessExample, ...]
+    outputs: Mapping[str, str]
+    cost: Callable[[Any], int]
+    cost_limit: int
+    cost_unit: str = "grid points x orientation samples"
+    time_limit_s: float = 900.0
+    version: str = "1.0.0"
+
+    def describe(self) -> dict[str, Any]:
+        """The process description served at ``GET /v1/processes/{id}``."""
+        return {
+            "id": self.id,
+            "title": self.title,
+            "description": self.description,
+            "version": self.version,
+            "jobControlOptions": ["async-execute", "dismiss"],
+            "inputs": self.inputs_model.model_json_schema(),
+            "outputs": dict(self.outputs),
+            "examples": [
+                {"title": ex.title, "description": ex.description, "inputs": dict(ex.inputs)}
+                for ex in self.examples
+            ],
+            "limits": {
+                "cost_limit": self.cost_limit,
+                "cost_unit": self.cost_unit,
+                "time_limit_s": self.time_limit_s,
+            },
+        }
+
+    def summary(self) -> dict[str, Any]:
+        """The short form listed at ``GET /v1/processes``."""
+        return {
+            "id": self.id,
+            "title": self.title,
+            "description": self.description,
+            "version": self.version,
+        }
+
+
+class ProcessRegistry:
+    """Process definitions by ID, in the order they were registered."""
+
+    def __init__(self, definitions: tuple[ProcessDefinition, ...]) -> None:
+        self._by_id = {d.id: d for d in definitions}
+        if len(self._by_id) != len(definitions):
+            raise ValueError("process IDs must be unique")
+
+    def __iter__(self):  # type: ignore[no-untyped-def]
+        return iter(self._by_id.values())
+
+    def __contains__(self, process_id: object) -> bool:
+        return process_id in self._by_id
+
+    def get(self, process_id: str) -> ProcessDefinition | None:
+        return self._by_id.get(process_id)
+
+    def ids(self) -> list[str]:
+        return list(self._by_id)
+
+
+def default_registry() -> ProcessRegistry:
+    """Every process dexlab ships, built on demand (no import-time work)."""
+    from worker.jobs.planar3r import DEXTERITY_MAP, SYNTHESIS
+
+    return ProcessRegistry((DEXTERITY_MAP, SYNTHESIS))

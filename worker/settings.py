@@ -1,0 +1,53 @@
+"""Worker-side settings, read from the environment (``DEXLAB_*``) or given explicitly."""
+
+from __future__ import annotations
+
+import os
+from pathlib import Path
+
+from pydantic import Field
+from pydantic_settings import BaseSettings, SettingsConfigDict
+
+__all__ = ["WorkerSettings"]
+
+
+def _cpu_count() -> int:
+    return max(1, os.cpu_count() or 1)
+
+
+class WorkerSettings(BaseSettings):
+    """How workers reach the job store and how they run jobs.
+
+    Every field can be set with an environment variable named ``DEXLAB_<FIELD>``.
+    """
+
+    model_config = SettingsConfigDict(env_prefix="DEXLAB_", extra="ignore", frozen=True)
+
+    data_dir: Path = Field(Path("data"), description="Where the embedded SQLite store lives.")
+    store_url: str | None = Field(
+        None, description="Job store URL; default sqlite:///<data_dir>/jobs.db."
+    )
+    workers: int = Field(
+        default_factory=_cpu_count, ge=0, le=256, description="Worker processes (0: none)."
+    )
+    lease_seconds: float = Field(
+        15.0, gt=0, description="A claimed job's lease; renewed by heartbeats."
+    )
+    heartbeat_seconds: float = Field(2.0, gt=0, description="Heartbeat interval of a job.")
+    poll_seconds: float = Field(0.2, gt=0, description="How often an idle worker looks for work.")
+    max_attempts: int = Field(3, ge=1, le=20, description="Attempts before a lost job fails.")
+    max_time_limit_s: float | None = Field(
+        None, gt=0, description="Cap on every process's time limit (seconds)."
+    )
+
+    def resolved_store_url(self) -> str:
+        """The store URL, defaulting to the SQLite file in the data directory."""
+        if self.store_url:
+            return self.store_url
+        return f"sqlite:///{(self.data_dir / 'jobs.db').resolve()}"
+
+    def time_limit_for(self, process_limit_s: float) -> float:
+        """The time limit a job gets: the process's, capped by ``max_time_limit_s``."""
+        if self.max_time_limit_s is None:
+            return process_limit_s
+        return min(process_limit_s, self.max_time_limit_s)

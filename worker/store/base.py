@@ -1,0 +1,129 @@
+"""The job store interface: the single source of truth for jobs, results and artifacts.
+
+Every write a worker makes on behalf of a running attempt carries the attempt's lease
+token; the store applies it only while that token is current and the job still
+running, so a stale or duplicate worker can never overwrite a newer attempt.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass
+from typing import Any, Protocol
+
+from worker.contract import Artifact, JobRecord, JobStatus
+
+__all__ = ["Claim", "HeartbeatAck", "JobPage", "JobStore", "NewJob", "WorkerInfo"]
+
+
+@dataclass(frozen=True)
+class NewJob:
+    """A job to create."""
+
+    process_id: str
+    inputs: Mapping[str, Any]
+    time_limit_s: float
+    max_attempts: int
+    idempotency_key: str | None = None
+    request_hash: str | None = None
+
+
+@dataclass(frozen=True)
+class Claim:
+    """A job a worker claimed, with the token that fences its writes."""
+
+    job: JobRecord
+    lease_token: str
+
+
+@dataclass(frozen=True)
+class HeartbeatAck:
+    """What a heartbeat learned: whether the attempt still owns the job."""
+
+    owner: bool
+    status: JobStatus | None
+
+
+@dataclass(frozen=True)
+class JobPage:
+    """One page of a job listing, newest first."""
+
+    jobs: Sequence[JobRecord]
+    next_cursor: str | None
+
+
+@dataclass(frozen=True)
+class WorkerInfo:
+    """A worker process that registered with the store."""
+
+    worker_id: str
+    host: str
+    pid: int
+    started: float
+    heartbeat: float
+
+
+class JobStore(Protocol):
+    """Persistent jobs.  Implementations: :class:`worker.store.sqlite.SqliteJobStore`."""
+
+    def initialise(self) -> None:
+        """Create or migrate the schema."""
+
+    def ping(self) -> None:
+        """Raise :class:`worker.errors.StoreUnavailable` unless the store answers."""
+
+    def create_job(self, new: NewJob) -> tuple[JobRecord, bool]:
+        """Commit a new job; ``(job, created)``.  A known idempotency key with the same
+        request hash returns the existing job with ``created=False``; with another hash
+        it raises :class:`worker.errors.IdempotencyConflict`."""
+
+    def get_job(self, job_id: str) -> JobRecord | None: ...
+
+    def list_jobs(
+        self,
+        *,
+        limit: int,
+        cursor: str | None = None,
+        status: JobStatus | None = None,
+        process_id: str | None = None,
+    ) -> JobPage: ...
+
+    def claim_next(self, worker_id: str, lease_s: float) -> Claim | None:
+        """Requeue or fail jobs whose lease expired, then claim the oldest accepted job."""
+
+    def heartbeat(self, job_id: str, lease_token: str, lease_s: float) -> HeartbeatAck:
+        """Extend the lease if the attempt still owns the job."""
+
+    def report_progress(
+        self, job_id: str, lease_token: str, percent: float, message: str
+    ) -> bool: ...
+
+    def complete(
+        self,
+        job_id: str,
+        lease_token: str,
+        result: Mapping[str, Any],
+        artifacts: Sequence[Artifact],
+    ) -> bool:
+        """Store the result and artifacts, then flip the status to successful, in one
+        transaction.  False (and nothing written) if the attempt lost the job."""
+
+    def fail(self, job_id: str, lease_token: str, error: Mapping[str, Any]) -> bool: ...
+
+    def expire_leases_of(self, worker_id: str) -> int:
+        """Expire the leases a (dead) worker holds so the jobs are retried at once."""
+
+    def dismiss(self, job_id: str) -> JobRecord | None:
+        """Dismiss a job (a finished job's results are deleted); None if unknown."""
+
+    def get_result(self, job_id: str) -> Mapping[str, Any] | None: ...
+
+    def get_artifact(self, job_id: str, name: str) -> Artifact | None: ...
+
+    def register_worker(self, worker_id: str, host: str, pid: int) -> None: ...
+
+    def worker_heartbeat(self, worker_id: str) -> None: ...
+
+    def unregister_worker(self, worker_id: str) -> None: ...
+
+    def live_workers(self, within_s: float) -> list[WorkerInfo]: ...

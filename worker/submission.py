@@ -1,0 +1,93 @@
+"""Turning a client's request into a committed job: validate, price, store.
+
+Nothing is queued unless the inputs validate and the work fits the process's
+documented cost limit.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import json
+from collections.abc import Mapping
+from typing import Any
+
+from pydantic import BaseModel, ValidationError
+
+from worker.contract import JobRecord
+from worker.errors import CostLimitExceeded, InvalidInputs, NoSuchProcess
+from worker.processes import ProcessDefinition, ProcessRegistry
+from worker.settings import WorkerSettings
+from worker.store.base import JobStore, NewJob
+
+__all__ = ["field_errors", "request_hash", "submit", "validate_inputs"]
+
+
+def field_errors(exc: ValidationError, prefix: tuple[str | int, ...] = ()) -> list[dict[str, Any]]:
+    """Pydantic errors as ``{"field", "message", "type"}`` with dotted field paths."""
+    errors = []
+    for err in exc.errors(include_url=False):
+        loc = (*prefix, *err.get("loc", ()))
+        # Drop the union-member tags pydantic inserts (e.g. "PolylineTrajectory" or
+        # "function-after[...]"); the last element is always a real field name.
+        parts = [
+            str(p)
+            for i, p in enumerate(loc)
+            if i == len(loc) - 1 or not (isinstance(p, str) and (p[:1].isupper() or "[" in p))
+        ]
+        field = ""
+        for part in parts:
+            field += f"[{part}]" if part.isdigit() else (f".{part}" if field else part)
+        errors.append({"field": field or "inputs", "message": err["msg"], "type": err["type"]})
+    return errors
+
+
+def validate_inputs(definition: ProcessDefinition, raw: Mapping[str, Any]) -> BaseModel:
+    """The validated inputs model, or :class:`InvalidInputs` naming every bad field."""
+    try:
+        return definition.inputs_model.model_validate(raw)
+    except ValidationError as exc:
+        raise InvalidInputs(field_errors(exc, ("inputs",))) from exc
+
+
+def request_hash(process_id: str, raw: Mapping[str, Any]) -> str:
+    """A stable hash of a request body, for idempotency."""
+    canonical = json.dumps(
+        {"process": process_id, "inputs": raw}, sort_keys=True, separators=(",", ":")
+    )
+    return hashlib.sha256(canonical.encode()).hexdigest()
+
+
+def submit(
+    store: JobStore,
+    registry: ProcessRegistry,
+    settings: WorkerSettings,
+    process_id: str,
+    raw_inputs: Mapping[str, Any],
+    idempotency_key: str | None = None,
+) -> tuple[JobRecord, bool]:
+    """Validate, check the cost limit and commit a job; ``(job, created)``."""
+    definition = registry.get(process_id)
+    if definition is None:
+        raise NoSuchProcess(
+            f"No process {process_id!r}; available: {', '.join(registry.ids())}."
+        )
+    inputs = validate_inputs(definition, raw_inputs)
+    cost = definition.cost(inputs)
+    if cost > definition.cost_limit:
+        raise CostLimitExceeded(
+            f"This request costs {cost:,} {definition.cost_unit}, above the limit of "
+            f"{definition.cost_limit:,} for {process_id}; use a coarser grid or a larger "
+            "orientation step.",
+            cost=cost,
+            cost_limit=definition.cost_limit,
+            cost_unit=definition.cost_unit,
+        )
+    new = NewJob(
+        process_id=process_id,
+        inputs=inputs.model_dump(mode="json"),
+        time_limit_s=settings.time_limit_for(definition.time_limit_s),
+        max_attempts=settings.max_attempts,
+        idempotency_key=idempotency_key,
+        request_hash=request_hash(process_id, raw_inputs) if idempotency_key else None,
+    )
+    return store.create_job(new)
