@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import os
 import signal
+import subprocess
 import time
 from collections.abc import Iterator
 from pathlib import Path
@@ -15,7 +16,14 @@ from typing import Any
 
 import pytest
 
-from tests.integration.servers import Server, start_server, stop_server, wait_for, wait_terminal
+from tests.integration.servers import (
+    Server,
+    dexlab_command,
+    start_server,
+    stop_server,
+    wait_for,
+    wait_terminal,
+)
 
 pytestmark = pytest.mark.integration
 
@@ -173,3 +181,30 @@ def test_jobs_survive_a_server_restart(tmp_path: Path) -> None:
         assert wait_terminal(second.client, job_id)["status"] == "successful"
     finally:
         stop_server(second)
+
+
+def test_separate_dexlab_worker_runs_jobs_for_an_api_only_server(tmp_path: Path) -> None:
+    """`dexlab serve --workers 0` plus `dexlab worker` on the same store."""
+    api = start_server(tmp_path, workers=0)
+    log = (tmp_path / "worker.log").open("wb")
+    worker = subprocess.Popen(
+        [*dexlab_command(), "worker", "--data-dir", str(tmp_path), "--workers", "1"],
+        stdout=log, stderr=subprocess.STDOUT, start_new_session=True,
+        env={**os.environ, "DEXLAB_HEARTBEAT_SECONDS": "0.5"},
+    )
+    try:
+        deadline = time.monotonic() + 60
+        while api.client.get("/health/ready").status_code != 200:
+            assert time.monotonic() < deadline, "the API never saw the worker"
+            time.sleep(0.2)
+        r = api.client.post(MAP_URL, json={"inputs": {"links": [3, 2, 1],
+                                                       "grid": {"points_per_axis": 11}}})
+        assert wait_terminal(api.client, r.json()["jobID"])["status"] == "successful"
+    finally:
+        worker.send_signal(signal.SIGTERM)
+        try:
+            worker.wait(timeout=20)
+        except subprocess.TimeoutExpired:
+            os.killpg(worker.pid, signal.SIGKILL)
+        log.close()
+        stop_server(api)

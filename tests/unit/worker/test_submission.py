@@ -1,0 +1,78 @@
+"""Validation, pricing and idempotency hashing of submissions."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+from pydantic import BaseModel, ConfigDict, Field
+
+from worker.contract import JobContext, JobOutcome
+from worker.errors import CostLimitExceeded, InvalidInputs, NoSuchProcess
+from worker.processes import ProcessDefinition, ProcessRegistry
+from worker.settings import WorkerSettings
+from worker.store import open_store
+from worker.submission import request_hash, submit
+
+
+class Inner(BaseModel):
+    model_config = ConfigDict(extra="forbid")
+    n: int = Field(ge=1)
+
+
+class Inputs(BaseModel):
+    model_config = ConfigDict(extra="forbid")
+    sizes: list[float]
+    inner: Inner
+
+
+def run(inputs: Inputs, ctx: JobContext) -> JobOutcome:
+    return JobOutcome({"ok": True})
+
+
+REGISTRY = ProcessRegistry((
+    ProcessDefinition(
+        id="toy", title="Toy", description="", inputs_model=Inputs, run=run, examples=(),
+        outputs={}, cost=lambda i: int(sum(i.sizes)), cost_limit=100, time_limit_s=50,
+    ),
+))
+
+
+def test_field_errors_use_dotted_paths_with_indices(tmp_path: Path) -> None:
+    store = open_store(f"sqlite:///{tmp_path / 'j.db'}")
+    with pytest.raises(InvalidInputs) as info:
+        submit(store, REGISTRY, WorkerSettings(), "toy",
+               {"sizes": [1, "x"], "inner": {"n": 0}, "Extra": 1})
+    fields = {e["field"] for e in info.value.errors}
+    assert fields == {"inputs.sizes[1]", "inputs.inner.n", "inputs.Extra"}
+    assert info.value.detail.startswith("Invalid value for 'inputs.")
+    assert "2 more" in info.value.detail
+
+
+def test_cost_limit_is_checked_before_anything_is_stored(tmp_path: Path) -> None:
+    store = open_store(f"sqlite:///{tmp_path / 'j.db'}")
+    with pytest.raises(CostLimitExceeded, match="costs 101") as info:
+        submit(store, REGISTRY, WorkerSettings(), "toy", {"sizes": [101], "inner": {"n": 1}})
+    assert info.value.extra["cost_limit"] == 100
+    assert store.list_jobs(limit=10).jobs == []
+
+
+def test_unknown_process(tmp_path: Path) -> None:
+    store = open_store(f"sqlite:///{tmp_path / 'j.db'}")
+    with pytest.raises(NoSuchProcess, match="available: toy"):
+        submit(store, REGISTRY, WorkerSettings(), "nope", {})
+
+
+def test_time_limit_is_capped_by_settings(tmp_path: Path) -> None:
+    store = open_store(f"sqlite:///{tmp_path / 'j.db'}")
+    job, _ = submit(store, REGISTRY, WorkerSettings(max_time_limit_s=7), "toy",
+                    {"sizes": [1], "inner": {"n": 1}})
+    assert job.time_limit_s == 7
+    job, _ = submit(store, REGISTRY, WorkerSettings(), "toy", {"sizes": [1], "inner": {"n": 1}})
+    assert job.time_limit_s == 50
+
+
+def test_request_hash_ignores_key_order_but_not_values() -> None:
+    assert request_hash("p", {"a": 1, "b": 2}) == request_hash("p", {"b": 2, "a": 1})
+    assert request_hash("p", {"a": 1}) != request_hash("p", {"a": 2})
+    assert request_hash("p", {"a": 1}) != request_hash("q", {"a": 1})

@@ -1,0 +1,133 @@
+"""The paper's worked examples (Patel & Sobh §5), as inputs ready to POST.
+
+The numbers are the paper's, exactly as printed; what the paper then gets wrong about
+them is listed in METHODS.md §1 and reported in the jobs' ``notes``.
+"""
+
+from __future__ import annotations
+
+from types import MappingProxyType
+from typing import Any
+
+from worker.processes import ProcessExample
+
+__all__ = [
+    "DEXTERITY_MAP_EXAMPLES",
+    "EXAMPLE_1_CUBIC",
+    "EXAMPLE_1_DESIGN",
+    "EXAMPLE_1_L3",
+    "EXAMPLE_1_SWAPPED_DESIGN",
+    "EXAMPLE_1_TASK_POINTS",
+    "EXAMPLE_1_X_RANGE",
+    "EXAMPLE_2_DESIGN",
+    "EXAMPLE_2_L3",
+    "EXAMPLE_2_TASK_POINTS",
+    "PAPER_JOINT_LIMITS_DEG",
+    "SYNTHESIS_EXAMPLES",
+]
+
+#: Example 1, eq (12): y = -0.2292 x^3 + 7.625 x^2 - 78.83 x + 252, from A (x = 14) to E (x = 8).
+EXAMPLE_1_CUBIC = (-0.2292, 7.625, -78.83, 252.0)
+EXAMPLE_1_X_RANGE = (14.0, 8.0)
+EXAMPLE_1_TASK_POINTS = ((14.0, 14.0), (12.0, 8.0), (10.0, -3.0), (9.0, -7.0), (8.0, -8.0))
+EXAMPLE_1_LABELS = ("A", "B", "C", "D", "E")
+EXAMPLE_1_L3 = 8.0
+#: The paper's design for Example 1 (from its rounded distances 10 and 20).
+EXAMPLE_1_DESIGN = (15.0, 14.0, 8.0)
+#: Example 1, Case 2: the same links with l2 and l3 swapped.
+EXAMPLE_1_SWAPPED_DESIGN = (15.0, 8.0, 14.0)
+#: Example 2: seven independent task points A..G.
+EXAMPLE_2_TASK_POINTS = (
+    (16.0, 19.0),
+    (18.0, 0.0),
+    (-8.0, -25.0),
+    (-15.0, 11.0),
+    (-10.0, 16.0),
+    (20.0, -21.0),
+    (-7.0, 27.0),
+)
+EXAMPLE_2_LABELS = ("A", "B", "C", "D", "E", "F", "G")
+EXAMPLE_2_L3 = 15.0
+#: The paper's design for Example 2 (eqs 10-11 with d_max = 29, l3 = 15).
+EXAMPLE_2_DESIGN = (23.0, 22.0, 15.0)
+#: Case 3 of both examples: th1, th2 in [-150, 150], th3 in [-175, 175] degrees.
+PAPER_JOINT_LIMITS_DEG = ((-150.0, 150.0), (-150.0, 150.0), (-175.0, 175.0))
+
+_EXAMPLE_1_TRAJECTORY: dict[str, Any] = {
+    "polynomial": list(EXAMPLE_1_CUBIC),
+    "x_start": EXAMPLE_1_X_RANGE[0],
+    "x_end": EXAMPLE_1_X_RANGE[1],
+    "samples": 200,
+}
+
+
+def _points(points: tuple[tuple[float, float], ...]) -> list[list[float]]:
+    return [list(p) for p in points]
+
+
+def _limits() -> list[list[float]]:
+    return [list(pair) for pair in PAPER_JOINT_LIMITS_DEG]
+
+
+_EXAMPLE_1_SYNTHESIS: dict[str, Any] = {
+    "trajectory": _EXAMPLE_1_TRAJECTORY,
+    "task_points": _points(EXAMPLE_1_TASK_POINTS),
+    "task_labels": list(EXAMPLE_1_LABELS),
+    "l3": EXAMPLE_1_L3,
+    "joint_limits_deg": _limits(),
+    "grid": {"points_per_axis": 201},
+}
+
+SYNTHESIS_EXAMPLES = (
+    ProcessExample(
+        title="Example 1: cubic trajectory A..E, distances rounded as in the paper",
+        inputs=MappingProxyType({**_EXAMPLE_1_SYNTHESIS, "round_distances": True}),
+        description="The paper's Example 1 (eq 12, l3 = 8, Cases 1-3). The exact range "
+        "10.3923..19.7673 is rounded outward to 10..20, giving the paper's (15, 14, 8).",
+    ),
+    ProcessExample(
+        title="Example 1 without rounding: the exact distance range",
+        inputs=MappingProxyType({**_EXAMPLE_1_SYNTHESIS, "round_distances": False}),
+        description="Eqs (10)-(11) from the exact d_min = 10.3923 and d_max = 19.7673: "
+        "(14.8837, 13.8837, 8).",
+    ),
+    ProcessExample(
+        title="Example 2: seven independent task points",
+        inputs=MappingProxyType(
+            {
+                "task_points": _points(EXAMPLE_2_TASK_POINTS),
+                "task_labels": list(EXAMPLE_2_LABELS),
+                "l3": EXAMPLE_2_L3,
+                "joint_limits_deg": _limits(),
+                "grid": {"points_per_axis": 201},
+            }
+        ),
+        description="The paper's Example 2 (l3 = 15): d_min = 18 (B), d_max = 29 (F), "
+        "design (23, 22, 15); under the joint limits only F stays fully dexterous.",
+    ),
+)
+
+_EXAMPLE_1_MAP: dict[str, Any] = {
+    "links": list(EXAMPLE_1_DESIGN),
+    "task_points": _points(EXAMPLE_1_TASK_POINTS),
+    "task_labels": list(EXAMPLE_1_LABELS),
+    "trajectory": _EXAMPLE_1_TRAJECTORY,
+    "grid": {"points_per_axis": 201},
+}
+
+DEXTERITY_MAP_EXAMPLES = (
+    ProcessExample(
+        title="Example 1, Case 1: the design (15, 14, 8) with fully revolute joints",
+        inputs=MappingProxyType(_EXAMPLE_1_MAP),
+        description="Exact d_z (Figs 6-8): full dexterity on d <= 7 and 9 <= d <= 21; "
+        "all five task points and the whole cubic trajectory have d_z = 1.",
+    ),
+    ProcessExample(
+        title="Example 1, Case 3: the design (15, 14, 8) under joint limits",
+        inputs=MappingProxyType(
+            {**_EXAMPLE_1_MAP, "joint_limits_deg": _limits(), "orientation_step_deg": 1.0}
+        ),
+        description="th1, th2 in [-150, 150] and th3 in [-175, 175] degrees (Fig 11), "
+        "orientation sampled every 1 degree; task points B..E lose full dexterity.",
+    ),
+)

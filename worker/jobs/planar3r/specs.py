@@ -1,0 +1,300 @@
+"""Validated inputs of the planar3r jobs (Patel & Sobh; METHODS.md §1).
+
+Every model is frozen with ``extra="forbid"`` and rejects NaN and infinity; the field
+descriptions become the public JSON schema served at ``GET /v1/processes/{id}``.
+Lengths are in the caller's ``length_unit``, angles in degrees.
+"""
+
+from __future__ import annotations
+
+from typing import Annotated, Any
+
+from pydantic import (
+    AfterValidator,
+    BaseModel,
+    BeforeValidator,
+    ConfigDict,
+    Discriminator,
+    Field,
+    Tag,
+    field_validator,
+    model_validator,
+)
+
+__all__ = [
+    "MAX_ORIENTATION_STEP_DEG",
+    "MAX_POINTS_PER_AXIS",
+    "MAX_TASK_POINTS",
+    "MIN_ORIENTATION_STEP_DEG",
+    "DexterityMapSpec",
+    "GridSpec",
+    "PolylineTrajectory",
+    "PolynomialTrajectory",
+    "SynthesisSpec",
+    "Trajectory",
+    "default_task_labels",
+]
+
+MAX_POINTS_PER_AXIS = 2001
+MIN_ORIENTATION_STEP_DEG = 0.1
+MAX_ORIENTATION_STEP_DEG = 30.0
+MAX_TASK_POINTS = 1000
+MAX_TRAJECTORY_SAMPLES = 10_000
+MAX_POLYLINE_VERTICES = 10_000
+MAX_POLYNOMIAL_COEFFICIENTS = 10
+
+Point = tuple[float, float]
+#: A link length: finite (the models reject NaN and infinity) and positive.
+Length = Annotated[float, Field(gt=0)]
+JointLimitsDeg = tuple[tuple[float, float], tuple[float, float], tuple[float, float]]
+
+
+class _Spec(BaseModel):
+    model_config = ConfigDict(extra="forbid", frozen=True, allow_inf_nan=False)
+
+
+def default_task_labels(count: int) -> tuple[str, ...]:
+    """Spreadsheet-style labels: A, B, ..., Z, AA, AB, ... (``count`` of them)."""
+    labels = []
+    for index in range(count):
+        label = ""
+        n = index + 1
+        while n:
+            n, rem = divmod(n - 1, 26)
+            label = chr(ord("A") + rem) + label
+        labels.append(label)
+    return tuple(labels)
+
+
+class GridSpec(_Spec):
+    """The evaluation grid: ``points_per_axis`` nodes on each axis, ends included."""
+
+    bounds: tuple[float, float, float, float] | None = Field(
+        None,
+        description=(
+            "[x_min, x_max, y_min, y_max] of the grid. Default: the square "
+            "±1.05·(l1 + l2 + l3) around the base, which holds the whole reachable disk."
+        ),
+    )
+    points_per_axis: int = Field(
+        201,
+        ge=2,
+        le=MAX_POINTS_PER_AXIS,
+        description=f"Grid nodes per axis (2..{MAX_POINTS_PER_AXIS}); the grid has N² nodes.",
+    )
+
+    @field_validator("bounds")
+    @classmethod
+    def _ordered_bounds(
+        cls, bounds: tuple[float, float, float, float] | None
+    ) -> tuple[float, float, float, float] | None:
+        if bounds is not None:
+            x_min, x_max, y_min, y_max = bounds
+            if not x_min < x_max:
+                raise ValueError(f"bounds: x_min {x_min:g} must be less than x_max {x_max:g}")
+            if not y_min < y_max:
+                raise ValueError(f"bounds: y_min {y_min:g} must be less than y_max {y_max:g}")
+        return bounds
+
+
+class PolylineTrajectory(_Spec):
+    """A trajectory through the given vertices, in order, with straight segments."""
+
+    points: tuple[Point, ...] = Field(
+        ...,
+        min_length=2,
+        max_length=MAX_POLYLINE_VERTICES,
+        description="Vertices [[x, y], ...] of the polyline (at least 2), in order.",
+    )
+    samples: int = Field(
+        200,
+        ge=2,
+        le=MAX_TRAJECTORY_SAMPLES,
+        description="Points spaced evenly by arc length (ends included) at which the "
+        "dexterity along the trajectory is evaluated.",
+    )
+
+    @field_validator("points")
+    @classmethod
+    def _positive_length(cls, points: tuple[Point, ...]) -> tuple[Point, ...]:
+        if all(p == points[0] for p in points):
+            raise ValueError("points: the polyline has zero length (all vertices coincide)")
+        return points
+
+
+class PolynomialTrajectory(_Spec):
+    """A trajectory y = a_n x^n + ... + a_0 for x from ``x_start`` to ``x_end``."""
+
+    polynomial: tuple[float, ...] = Field(
+        ...,
+        min_length=1,
+        max_length=MAX_POLYNOMIAL_COEFFICIENTS,
+        description="Coefficients [a_n, ..., a_1, a_0] of y(x), highest power first "
+        f"(1..{MAX_POLYNOMIAL_COEFFICIENTS} of them).",
+    )
+    x_start: float = Field(..., description="x at the start of the trajectory.")
+    x_end: float = Field(..., description="x at the end of the trajectory (≠ x_start).")
+    samples: int = Field(
+        200,
+        ge=2,
+        le=MAX_TRAJECTORY_SAMPLES,
+        description="Points spaced evenly in x (ends included) at which the dexterity "
+        "along the trajectory is evaluated.",
+    )
+
+    @model_validator(mode="after")
+    def _distinct_ends(self) -> PolynomialTrajectory:
+        if self.x_start == self.x_end:
+            raise ValueError(f"x_start and x_end must differ (both are {self.x_start:g})")
+        return self
+
+
+def _trajectory_kind(value: Any) -> str | None:
+    if isinstance(value, dict):
+        keys = set(value)
+    elif isinstance(value, BaseModel):
+        keys = set(type(value).model_fields)
+    else:
+        return None
+    has_points, has_polynomial = "points" in keys, "polynomial" in keys
+    if has_points == has_polynomial:
+        return None  # both or neither: reported with the custom message below
+    return "polyline" if has_points else "polynomial"
+
+
+Trajectory = Annotated[
+    Annotated[PolylineTrajectory, Tag("polyline")]
+    | Annotated[PolynomialTrajectory, Tag("polynomial")],
+    Discriminator(
+        _trajectory_kind,
+        custom_error_type="trajectory_kind",
+        custom_error_message=(
+            "trajectory must be an object with exactly one of 'points' (a polyline "
+            "[[x, y], ...]) or 'polynomial' (coefficients of y(x), highest power first, "
+            "with 'x_start' and 'x_end')"
+        ),
+    ),
+]
+
+_LINKS_DESCRIPTION = "Link lengths [l1, l2, l3], from the base to the end-effector (each > 0)."
+_LIMITS_DESCRIPTION = (
+    "Joint limits [[lo, hi], [lo, hi], [lo, hi]] in degrees for joints 1..3, with "
+    "-180 <= lo <= hi <= 180; joint angles are wrapped to (-180, 180]. Omit for fully "
+    "revolute joints (the exact closed form is then used)."
+)
+_TASK_POINTS_DESCRIPTION = f"Task points [[x, y], ...] (at most {MAX_TASK_POINTS})."
+_LABELS_DESCRIPTION = "Labels of the task points, one each (default A, B, C, ...)."
+_STEP_DESCRIPTION = (
+    "Orientation sampling step in degrees, used only with joint limits "
+    f"({MIN_ORIENTATION_STEP_DEG:g}..{MAX_ORIENTATION_STEP_DEG:g}). The n = round(360 / step) "
+    "samples are spaced exactly 360/n apart; that effective step is reported."
+)
+_UNIT_DESCRIPTION = "Name of the length unit, used in plots and reported back."
+
+
+def _three_entries(what: str) -> BeforeValidator:
+    """Reject a list of the wrong length with one message instead of per-item errors."""
+
+    def check(value: Any) -> Any:
+        if isinstance(value, list | tuple) and len(value) != 3:
+            raise ValueError(f"{what}, not {len(value)}")
+        return value
+
+    return BeforeValidator(check)
+
+
+def _check_joint_limits(limits: JointLimitsDeg | None) -> JointLimitsDeg | None:
+    for index, (lo, hi) in enumerate(limits or ()):
+        for name, value in (("lower", lo), ("upper", hi)):
+            if not -180.0 <= value <= 180.0:
+                raise ValueError(
+                    f"joint_limits_deg[{index}]: {name} limit {value:g} is outside [-180, 180]"
+                )
+        if lo > hi:
+            raise ValueError(
+                f"joint_limits_deg[{index}]: lower limit {lo:g} exceeds upper limit {hi:g}"
+            )
+    return limits
+
+
+class _TaskSpec(_Spec):
+    """Fields shared by both jobs."""
+
+    joint_limits_deg: Annotated[
+        JointLimitsDeg | None,
+        _three_entries("joint_limits_deg needs one [lo, hi] pair per joint (3)"),
+        AfterValidator(_check_joint_limits),
+    ] = Field(None, description=_LIMITS_DESCRIPTION)
+    orientation_step_deg: float = Field(
+        1.0, ge=MIN_ORIENTATION_STEP_DEG, le=MAX_ORIENTATION_STEP_DEG, description=_STEP_DESCRIPTION
+    )
+    grid: GridSpec = Field(default_factory=GridSpec, description="The evaluation grid.")
+    task_points: tuple[Point, ...] | None = Field(
+        None, min_length=1, max_length=MAX_TASK_POINTS, description=_TASK_POINTS_DESCRIPTION
+    )
+    task_labels: tuple[Annotated[str, Field(min_length=1, max_length=32)], ...] | None = Field(
+        None, description=_LABELS_DESCRIPTION
+    )
+    trajectory: Trajectory | None = Field(
+        None,
+        description="A trajectory: {'points': [[x, y], ...], 'samples': n} (a polyline) or "
+        "{'polynomial': [a_n, ..., a_0], 'x_start': x0, 'x_end': x1, 'samples': n} (y(x)).",
+    )
+    length_unit: str = Field(
+        "units", min_length=1, max_length=16, pattern=r"^[\w .°/-]+$", description=_UNIT_DESCRIPTION
+    )
+
+    @model_validator(mode="after")
+    def _labels_match_points(self) -> _TaskSpec:
+        if self.task_labels is not None:
+            if self.task_points is None:
+                raise ValueError("task_labels given without task_points")
+            if len(self.task_labels) != len(self.task_points):
+                raise ValueError(
+                    f"task_labels has {len(self.task_labels)} labels for "
+                    f"{len(self.task_points)} task points"
+                )
+        return self
+
+    @property
+    def labels(self) -> tuple[str, ...]:
+        """The task points' labels, defaulted to A, B, C, ..."""
+        if self.task_labels is not None:
+            return self.task_labels
+        return default_task_labels(len(self.task_points or ()))
+
+
+class _ArmSpec(_Spec):
+    links: Annotated[
+        tuple[Length, Length, Length],
+        _three_entries("links needs three lengths [l1, l2, l3]"),
+    ] = Field(..., description=_LINKS_DESCRIPTION)
+
+
+class _DesignSpec(_Spec):
+    l3: float = Field(
+        ...,
+        gt=0,
+        description="Length of the last link (the paper chooses l3 < d_min; full dexterity "
+        "over the task needs l3 + |l1 - l2| <= d_min, i.e. l3 <= d_min - 1).",
+    )
+    round_distances: bool = Field(
+        False,
+        description="Round d_min down and d_max up to whole units before eqs (10)-(11), "
+        "as the paper does in Example 1 (10 and 20).",
+    )
+
+
+# The mixins come last so that their fields lead the published schema.
+class DexterityMapSpec(_TaskSpec, _ArmSpec):
+    """Inputs of ``planar3r-dexterity-map``: d_z and D = d_z/3 over a grid."""
+
+
+class SynthesisSpec(_TaskSpec, _DesignSpec):
+    """Inputs of ``planar3r-synthesis``: link lengths by the paper's eqs (10)-(11)."""
+
+    @model_validator(mode="after")
+    def _needs_task(self) -> SynthesisSpec:
+        if self.task_points is None and self.trajectory is None:
+            raise ValueError("planar3r-synthesis needs task_points or a trajectory (or both)")
+        return self

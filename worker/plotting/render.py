@@ -1,0 +1,47 @@
+"""Turn a finished :class:`matplotlib.figure.Figure` into PNG and SVG artifacts.
+
+No pyplot and no global state: figures are plain ``Figure`` objects, rendered through
+the format's own canvas by ``Figure.savefig``.  The only rcParams touched is
+``svg.hashsalt``, and only inside an ``rc_context`` around the SVG export (the worker
+runs jobs in processes, one job per process at a time, so the context cannot leak into
+another job's figure).
+"""
+
+from __future__ import annotations
+
+import io
+
+from matplotlib import rc_context
+from matplotlib.figure import Figure
+
+from worker.contract import Artifact
+
+__all__ = ["RASTER_DPI", "figure_artifacts"]
+
+#: Resolution of the PNG, and of any rasterised layer (heat-map images) inside the SVG.
+RASTER_DPI = 150
+
+
+def figure_artifacts(fig: Figure, stem: str, title: str) -> tuple[Artifact, Artifact]:
+    """Render ``fig`` as ``(png, svg)`` artifacts named ``{stem}.png`` and ``{stem}.svg``.
+
+    Both carry ``title`` (as the artifact title and in the file's own metadata).  The SVG
+    is reproducible: no date, and element ids salted with the stem instead of a random
+    value, so identical figures give identical bytes.  Text in the SVG is drawn as
+    paths, so it looks the same in every viewer; each string is also kept in an XML
+    comment next to its glyphs, which keeps the file searchable.
+    """
+    if not stem or "/" in stem or "\\" in stem:
+        raise ValueError(
+            "The 'stem' parameter of figure_artifacts must be a non-empty file name "
+            f"without path separators. Got {stem!r} instead."
+        )
+    png = io.BytesIO()
+    fig.savefig(png, format="png", dpi=RASTER_DPI, metadata={"Title": title})
+    svg = io.BytesIO()
+    with rc_context({"svg.hashsalt": f"dexlab:{stem}"}):
+        fig.savefig(svg, format="svg", dpi=RASTER_DPI, metadata={"Date": None, "Title": title})
+    return (
+        Artifact(name=f"{stem}.png", media_type="image/png", data=png.getvalue(), title=title),
+        Artifact(name=f"{stem}.svg", media_type="image/svg+xml", data=svg.getvalue(), title=title),
+    )
