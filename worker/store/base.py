@@ -13,7 +13,7 @@ from typing import Any, Protocol
 
 from worker.contract import Artifact, JobRecord, JobStatus
 
-__all__ = ["Claim", "HeartbeatAck", "JobPage", "JobStore", "NewJob", "WorkerInfo"]
+__all__ = ["Claim", "ClaimAttempt", "HeartbeatAck", "JobPage", "JobStore", "NewJob", "WorkerInfo"]
 
 
 @dataclass(frozen=True)
@@ -34,6 +34,20 @@ class Claim:
 
     job: JobRecord
     lease_token: str
+
+
+@dataclass(frozen=True)
+class ClaimAttempt:
+    """The outcome of claiming one named job (a broker delivered its ID).
+
+    ``claim`` is set when this worker now runs it.  Otherwise ``status`` says why not
+    (None: no such job): finished or dismissed (drop the message), or running under
+    another worker's live lease, which ends in ``retry_after_s`` seconds unless renewed.
+    """
+
+    claim: Claim | None
+    status: JobStatus | None
+    retry_after_s: float | None
 
 
 @dataclass(frozen=True)
@@ -90,6 +104,23 @@ class JobStore(Protocol):
 
     def claim_next(self, worker_id: str, lease_s: float) -> Claim | None:
         """Requeue or fail jobs whose lease expired, then claim the oldest accepted job."""
+
+    def claim_job(self, job_id: str, worker_id: str, lease_s: float) -> ClaimAttempt:
+        """Claim this job if it is accepted, or running under an expired lease."""
+
+    def reap_expired(self) -> list[str]:
+        """Requeue (or fail, when out of attempts) running jobs whose lease expired;
+        returns the requeued job IDs."""
+
+    def mark_dispatched(self, job_id: str) -> None:
+        """Record that the job's ID was handed to the broker now."""
+
+    def undispatched(self, older_than_s: float, limit: int = 100) -> list[str]:
+        """Accepted jobs not dispatched within ``older_than_s`` (lost messages)."""
+
+    def schema_version(self) -> int: ...
+
+    def close(self) -> None: ...
 
     def heartbeat(self, job_id: str, lease_token: str, lease_s: float) -> HeartbeatAck:
         """Extend the lease if the attempt still owns the job."""

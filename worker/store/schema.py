@@ -2,7 +2,8 @@
 
 Each migration runs once, in order, inside the transaction that records its version in
 ``schema_version``; a store created by an older dexlab is migrated forward on start-up,
-never dropped.  Append new migrations; never edit an applied one.
+never dropped.  Append new migrations; never edit an applied one.  ``{seq_pk}``,
+``{blob}`` and ``{float}`` are filled in with each database's type names.
 """
 
 from __future__ import annotations
@@ -14,24 +15,24 @@ MIGRATIONS: tuple[tuple[int, tuple[str, ...]], ...] = (
         1,
         (
             """CREATE TABLE jobs (
-                seq INTEGER PRIMARY KEY AUTOINCREMENT,
+                seq {seq_pk},
                 job_id TEXT NOT NULL UNIQUE,
                 process_id TEXT NOT NULL,
                 status TEXT NOT NULL,
                 inputs TEXT NOT NULL,
-                progress REAL NOT NULL DEFAULT 0,
+                progress {float} NOT NULL DEFAULT 0,
                 message TEXT NOT NULL DEFAULT '',
-                created REAL NOT NULL,
-                updated REAL NOT NULL,
-                started REAL,
-                finished REAL,
+                created {float} NOT NULL,
+                updated {float} NOT NULL,
+                started {float},
+                finished {float},
                 attempts INTEGER NOT NULL DEFAULT 0,
                 max_attempts INTEGER NOT NULL,
-                time_limit_s REAL NOT NULL,
+                time_limit_s {float} NOT NULL,
                 lease_token TEXT,
-                lease_expires REAL,
+                lease_expires {float},
                 worker_id TEXT,
-                attempt_started REAL,
+                attempt_started {float},
                 error TEXT,
                 result TEXT,
                 idempotency_key TEXT UNIQUE,
@@ -45,7 +46,7 @@ MIGRATIONS: tuple[tuple[int, tuple[str, ...]], ...] = (
                 media_type TEXT NOT NULL,
                 title TEXT NOT NULL DEFAULT '',
                 size INTEGER NOT NULL,
-                data BLOB NOT NULL,
+                data {blob} NOT NULL,
                 ord INTEGER NOT NULL DEFAULT 0,
                 PRIMARY KEY (job_id, name)
             )""",
@@ -53,9 +54,15 @@ MIGRATIONS: tuple[tuple[int, tuple[str, ...]], ...] = (
                 worker_id TEXT PRIMARY KEY,
                 host TEXT NOT NULL,
                 pid INTEGER NOT NULL,
-                started REAL NOT NULL,
-                heartbeat REAL NOT NULL
+                started {float} NOT NULL,
+                heartbeat {float} NOT NULL
             )""",
         ),
+    ),
+    (
+        2,
+        # When the job was last handed to a broker (NULL: never), so a sweeper can
+        # re-dispatch a job whose message was lost.
+        ("ALTER TABLE jobs ADD COLUMN dispatched {float}",),
     ),
 )

@@ -1,4 +1,5 @@
-"""The SQLite job store: claims, leases, fencing, idempotency, listing, dismissal."""
+"""The job stores (SQLite and PostgreSQL): claims, leases, fencing, idempotency,
+listing, dismissal, migrations."""
 
 from __future__ import annotations
 
@@ -11,14 +12,8 @@ from worker.contract import Artifact, JobStatus
 from worker.errors import IdempotencyConflict
 from worker.store import open_store
 from worker.store.base import NewJob
-from worker.store.sqlite import SqliteJobStore, decode_cursor, encode_cursor
-
-
-@pytest.fixture
-def store(tmp_path: Path) -> SqliteJobStore:
-    s = open_store(f"sqlite:///{tmp_path / 'jobs.db'}")
-    assert isinstance(s, SqliteJobStore)
-    return s
+from worker.store.sql import decode_cursor, encode_cursor
+from worker.store.base import JobStore
 
 
 def new_job(process_id: str = "p", max_attempts: int = 3, **kw: object) -> NewJob:
@@ -26,7 +21,7 @@ def new_job(process_id: str = "p", max_attempts: int = 3, **kw: object) -> NewJo
                   max_attempts=max_attempts, **kw)  # type: ignore[arg-type]
 
 
-def test_create_then_get_roundtrips(store: SqliteJobStore) -> None:
+def test_create_then_get_roundtrips(store: JobStore) -> None:
     job, created = store.create_job(new_job())
     assert created
     got = store.get_job(job.job_id)
@@ -37,14 +32,14 @@ def test_create_then_get_roundtrips(store: SqliteJobStore) -> None:
     assert store.get_job("nope") is None
 
 
-def test_initialise_is_idempotent_and_keeps_jobs(store: SqliteJobStore) -> None:
+def test_initialise_is_idempotent_and_keeps_jobs(store: JobStore) -> None:
     job, _ = store.create_job(new_job())
     store.initialise()
-    reopened = open_store(f"sqlite:///{store.path}")
-    assert reopened.get_job(job.job_id) is not None
+    assert store.schema_version() == 2
+    assert store.get_job(job.job_id) is not None
 
 
-def test_claim_takes_oldest_and_only_once(store: SqliteJobStore) -> None:
+def test_claim_takes_oldest_and_only_once(store: JobStore) -> None:
     first, _ = store.create_job(new_job())
     second, _ = store.create_job(new_job())
     c1 = store.claim_next("w1", 10)
@@ -56,7 +51,7 @@ def test_claim_takes_oldest_and_only_once(store: SqliteJobStore) -> None:
     assert store.claim_next("w3", 10) is None
 
 
-def test_complete_stores_result_and_artifacts_then_flips(store: SqliteJobStore) -> None:
+def test_complete_stores_result_and_artifacts_then_flips(store: JobStore) -> None:
     job, _ = store.create_job(new_job())
     claim = store.claim_next("w", 10)
     assert claim is not None
@@ -71,7 +66,7 @@ def test_complete_stores_result_and_artifacts_then_flips(store: SqliteJobStore) 
     assert got is not None and got.data == b"\x89PNG data" and got.media_type == "image/png"
 
 
-def test_stale_lease_cannot_write(store: SqliteJobStore) -> None:
+def test_stale_lease_cannot_write(store: JobStore) -> None:
     job, _ = store.create_job(new_job())
     old = store.claim_next("w-old", 10)
     assert old is not None
@@ -86,7 +81,7 @@ def test_stale_lease_cannot_write(store: SqliteJobStore) -> None:
     assert store.get_result(job.job_id) == {"fresh": True}
 
 
-def test_expired_lease_requeues_then_fails_after_max_attempts(store: SqliteJobStore) -> None:
+def test_expired_lease_requeues_then_fails_after_max_attempts(store: JobStore) -> None:
     job, _ = store.create_job(new_job(max_attempts=2))
     for attempt in (1, 2):
         claim = store.claim_next(f"w{attempt}", 0.01)
@@ -99,7 +94,7 @@ def test_expired_lease_requeues_then_fails_after_max_attempts(store: SqliteJobSt
     assert "2 allowed" in failed.error["detail"]
 
 
-def test_heartbeat_extends_lease_and_reports_dismissal(store: SqliteJobStore) -> None:
+def test_heartbeat_extends_lease_and_reports_dismissal(store: JobStore) -> None:
     job, _ = store.create_job(new_job())
     claim = store.claim_next("w", 0.05)
     assert claim is not None
@@ -112,7 +107,7 @@ def test_heartbeat_extends_lease_and_reports_dismissal(store: SqliteJobStore) ->
     assert not store.complete(job.job_id, claim.lease_token, {"late": 1}, [])
 
 
-def test_progress_is_fenced_and_clamped(store: SqliteJobStore) -> None:
+def test_progress_is_fenced_and_clamped(store: JobStore) -> None:
     job, _ = store.create_job(new_job())
     claim = store.claim_next("w", 10)
     assert claim is not None
@@ -121,7 +116,7 @@ def test_progress_is_fenced_and_clamped(store: SqliteJobStore) -> None:
     assert got is not None and got.progress == 100 and got.message == "over"
 
 
-def test_idempotency_same_body_same_job_other_body_conflict(store: SqliteJobStore) -> None:
+def test_idempotency_same_body_same_job_other_body_conflict(store: JobStore) -> None:
     a, created_a = store.create_job(new_job(idempotency_key="k", request_hash="h1"))
     b, created_b = store.create_job(new_job(idempotency_key="k", request_hash="h1"))
     assert created_a and not created_b and a.job_id == b.job_id
@@ -129,7 +124,7 @@ def test_idempotency_same_body_same_job_other_body_conflict(store: SqliteJobStor
         store.create_job(new_job(idempotency_key="k", request_hash="h2"))
 
 
-def test_list_newest_first_with_cursor_and_filters(store: SqliteJobStore) -> None:
+def test_list_newest_first_with_cursor_and_filters(store: JobStore) -> None:
     ids = [store.create_job(new_job("p" if i % 2 else "q"))[0].job_id for i in range(5)]
     page = store.list_jobs(limit=2)
     assert [j.job_id for j in page.jobs] == ids[::-1][:2]
@@ -152,7 +147,7 @@ def test_cursor_roundtrip_and_garbage() -> None:
         decode_cursor("not-a-cursor")
 
 
-def test_dismiss_finished_job_drops_results(store: SqliteJobStore) -> None:
+def test_dismiss_finished_job_drops_results(store: JobStore) -> None:
     job, _ = store.create_job(new_job())
     claim = store.claim_next("w", 10)
     assert claim is not None
@@ -164,14 +159,14 @@ def test_dismiss_finished_job_drops_results(store: SqliteJobStore) -> None:
     assert store.dismiss("unknown") is None
 
 
-def test_worker_registry(store: SqliteJobStore) -> None:
+def test_worker_registry(store: JobStore) -> None:
     store.register_worker("h:1", "h", 1)
     assert [w.worker_id for w in store.live_workers(5)] == ["h:1"]
     store.unregister_worker("h:1")
     assert store.live_workers(5) == []
 
 
-def test_result_with_nan_is_refused(store: SqliteJobStore) -> None:
+def test_result_with_nan_is_refused(store: JobStore) -> None:
     job, _ = store.create_job(new_job())
     claim = store.claim_next("w", 10)
     assert claim is not None
@@ -179,3 +174,62 @@ def test_result_with_nan_is_refused(store: SqliteJobStore) -> None:
         store.complete(job.job_id, claim.lease_token, {"x": float("nan")}, [])
     got = store.get_job(job.job_id)
     assert got is not None and got.status is JobStatus.RUNNING
+
+
+def test_claim_job_by_id(store: JobStore) -> None:
+    job, _ = store.create_job(new_job())
+    first = store.claim_job(job.job_id, "w1", 10)
+    assert first.claim is not None and first.claim.job.attempts == 1
+    held = store.claim_job(job.job_id, "w2", 10)
+    assert held.claim is None and held.status is JobStatus.RUNNING
+    assert held.retry_after_s is not None and 9 < held.retry_after_s <= 10
+    store.expire_leases_of("w1")
+    second = store.claim_job(job.job_id, "w2", 10)
+    assert second.claim is not None and second.claim.job.attempts == 2
+    store.complete(job.job_id, second.claim.lease_token, {"ok": 1}, [])
+    done = store.claim_job(job.job_id, "w3", 10)
+    assert done.claim is None and done.status is JobStatus.SUCCESSFUL
+    unknown = store.claim_job("nope", "w3", 10)
+    assert unknown.claim is None and unknown.status is None
+
+
+def test_claim_job_fails_a_job_out_of_attempts(store: JobStore) -> None:
+    job, _ = store.create_job(new_job(max_attempts=1))
+    assert store.claim_job(job.job_id, "w1", 10).claim is not None
+    store.expire_leases_of("w1")
+    attempt = store.claim_job(job.job_id, "w2", 10)
+    assert attempt.claim is None and attempt.status is JobStatus.FAILED
+
+
+def test_dispatch_bookkeeping_and_reaping(store: JobStore) -> None:
+    a, _ = store.create_job(new_job())
+    b, _ = store.create_job(new_job())
+    assert store.undispatched(0.0) == [a.job_id, b.job_id]
+    store.mark_dispatched(a.job_id)
+    assert store.undispatched(60.0) == [b.job_id]
+    claim = store.claim_job(a.job_id, "w", 10).claim
+    assert claim is not None
+    assert store.reap_expired() == []
+    store.expire_leases_of("w")
+    assert store.reap_expired() == [a.job_id]
+    assert a.job_id in store.undispatched(60.0)  # requeued jobs need a new dispatch
+
+
+def test_concurrent_claims_never_share_a_job(store: JobStore) -> None:
+    import threading
+
+    ids = {store.create_job(new_job())[0].job_id for _ in range(20)}
+    claimed: list[str] = []
+    lock = threading.Lock()
+
+    def grab(worker: str) -> None:
+        while (claim := store.claim_next(worker, 10)) is not None:
+            with lock:
+                claimed.append(claim.job.job_id)
+
+    threads = [threading.Thread(target=grab, args=(f"w{i}",)) for i in range(4)]
+    for t in threads:
+        t.start()
+    for t in threads:
+        t.join()
+    assert sorted(claimed) == sorted(ids)

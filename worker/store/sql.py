@@ -1,0 +1,461 @@
+"""The job store's logic, written once in portable SQL for SQLite and PostgreSQL.
+
+A dialect subclass supplies connections and transactions
+(:class:`worker.store.sqlite.SqliteJobStore`,
+:class:`worker.store.postgres.PostgresJobStore`).  Queries use ``?`` placeholders;
+every write is one transaction, and the rows a decision depends on are locked before
+the decision (``BEGIN IMMEDIATE`` in SQLite, ``SELECT ... FOR UPDATE`` in PostgreSQL).
+"""
+
+from __future__ import annotations
+
+import base64
+import json
+import time
+import uuid
+from collections.abc import Mapping, Sequence
+from contextlib import AbstractContextManager
+from datetime import UTC, datetime
+from typing import Any, ClassVar
+
+from worker.contract import Artifact, ArtifactInfo, JobRecord, JobStatus
+from worker.errors import IdempotencyConflict
+from worker.store.base import Claim, ClaimAttempt, HeartbeatAck, JobPage, NewJob, WorkerInfo
+from worker.store.schema import MIGRATIONS
+
+__all__ = ["SqlJobStore", "decode_cursor", "encode_cursor"]
+
+Row = Any
+Conn = Any
+
+_RUNNING = JobStatus.RUNNING.value
+_ACCEPTED = JobStatus.ACCEPTED.value
+
+
+def _ts(value: float | None) -> datetime | None:
+    return None if value is None else datetime.fromtimestamp(value, tz=UTC)
+
+
+def encode_cursor(seq: int) -> str:
+    return base64.urlsafe_b64encode(f"seq:{seq}".encode()).decode().rstrip("=")
+
+
+def decode_cursor(cursor: str) -> int:
+    try:
+        padded = cursor + "=" * (-len(cursor) % 4)
+        text = base64.urlsafe_b64decode(padded.encode()).decode()
+        prefix, _, number = text.partition(":")
+        if prefix != "seq":
+            raise ValueError(cursor)
+        return int(number)
+    except (ValueError, UnicodeDecodeError) as exc:
+        raise ValueError(
+            f"The 'cursor' parameter is not a cursor this service issued: {cursor!r}"
+        ) from exc
+
+
+class SqlJobStore:
+    """A :class:`worker.store.base.JobStore` over a DB-API connection."""
+
+    #: Appended to a SELECT whose rows the transaction goes on to change.
+    lock_clause = ""
+    #: Type names substituted into the migrations' ``{placeholders}``.
+    ddl_types: ClassVar[Mapping[str, str]] = {}
+
+    # -- dialect hooks ----------------------------------------------------------------
+    def _conn(self) -> Conn:
+        """This thread's connection (autocommit; transactions are explicit)."""
+        raise NotImplementedError  # pragma: no cover - abstract
+
+    def _write(self) -> AbstractContextManager[Conn]:
+        """A write transaction yielding the connection."""
+        raise NotImplementedError  # pragma: no cover - abstract
+
+    def _lock_schema(self, conn: Conn) -> None:
+        """Serialise concurrent migrations (a no-op where the transaction does it)."""
+
+    def _sql(self, query: str) -> str:
+        return query
+
+    def close(self) -> None:
+        """Close this thread's connection."""
+
+    @property
+    def location(self) -> str:
+        return type(self).__name__
+
+    # -- helpers ----------------------------------------------------------------------
+    def _exec(self, conn: Conn, query: str, params: Sequence[Any] = ()) -> Any:
+        cur = conn.cursor()
+        cur.execute(self._sql(query), tuple(params))
+        return cur
+
+    def _one(self, conn: Conn, query: str, params: Sequence[Any] = ()) -> Row | None:
+        return self._exec(conn, query, params).fetchone()
+
+    def _all(self, conn: Conn, query: str, params: Sequence[Any] = ()) -> list[Row]:
+        return list(self._exec(conn, query, params).fetchall())
+
+    def _job_row(self, conn: Conn, job_id: str, lock: bool = False) -> Row | None:
+        suffix = self.lock_clause if lock else ""
+        return self._one(conn, f"SELECT * FROM jobs WHERE job_id = ?{suffix}", (job_id,))
+
+    # -- schema -----------------------------------------------------------------------
+    def initialise(self) -> None:
+        with self._write() as conn:
+            self._lock_schema(conn)
+            self._exec(conn, "CREATE TABLE IF NOT EXISTS schema_version (version INTEGER NOT NULL)")
+            row = self._one(conn, "SELECT MAX(version) AS v FROM schema_version")
+            current = (row["v"] if row is not None else None) or 0
+            for version, statements in MIGRATIONS:
+                if version <= current:
+                    continue
+                for statement in statements:
+                    self._exec(conn, statement.format(**self.ddl_types))
+                self._exec(conn, "INSERT INTO schema_version (version) VALUES (?)", (version,))
+
+    def schema_version(self) -> int:
+        row = self._one(self._conn(), "SELECT MAX(version) AS v FROM schema_version")
+        return int((row["v"] if row is not None else None) or 0)
+
+    # -- records ----------------------------------------------------------------------
+    def _artifact_infos(self, conn: Conn, job_id: str) -> tuple[ArtifactInfo, ...]:
+        rows = self._all(
+            conn,
+            "SELECT name, media_type, size, title FROM artifacts WHERE job_id = ? ORDER BY ord",
+            (job_id,),
+        )
+        return tuple(ArtifactInfo(r["name"], r["media_type"], r["size"], r["title"]) for r in rows)
+
+    def _record(self, conn: Conn, row: Row) -> JobRecord:
+        status = JobStatus(row["status"])
+        artifacts = (
+            self._artifact_infos(conn, row["job_id"]) if status is JobStatus.SUCCESSFUL else ()
+        )
+        created = _ts(row["created"])
+        updated = _ts(row["updated"])
+        assert created is not None and updated is not None
+        return JobRecord(
+            job_id=row["job_id"],
+            process_id=row["process_id"],
+            status=status,
+            inputs=json.loads(row["inputs"]),
+            created=created,
+            updated=updated,
+            progress=row["progress"],
+            message=row["message"],
+            started=_ts(row["started"]),
+            finished=_ts(row["finished"]),
+            attempts=row["attempts"],
+            max_attempts=row["max_attempts"],
+            time_limit_s=row["time_limit_s"],
+            error=json.loads(row["error"]) if row["error"] else None,
+            worker_id=row["worker_id"],
+            artifacts=artifacts,
+        )
+
+    def create_job(self, new: NewJob) -> tuple[JobRecord, bool]:
+        now = time.time()
+        with self._write() as conn:
+            if new.idempotency_key is not None:
+                row = self._one(
+                    conn,
+                    f"SELECT * FROM jobs WHERE idempotency_key = ?{self.lock_clause}",
+                    (new.idempotency_key,),
+                )
+                if row is not None:
+                    if row["request_hash"] != new.request_hash:
+                        raise IdempotencyConflict(
+                            "This Idempotency-Key was already used with a different request "
+                            f"body (job {row['job_id']}); use a new key for a new request."
+                        )
+                    return self._record(conn, row), False
+            job_id = str(uuid.uuid4())
+            self._exec(
+                conn,
+                """INSERT INTO jobs (job_id, process_id, status, inputs, created, updated,
+                       max_attempts, time_limit_s, idempotency_key, request_hash, message)
+                   VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)""",
+                (job_id, new.process_id, _ACCEPTED, json.dumps(dict(new.inputs)), now, now,
+                 new.max_attempts, new.time_limit_s, new.idempotency_key, new.request_hash,
+                 "queued"),
+            )
+            return self._record(conn, self._job_row(conn, job_id)), True
+
+    def get_job(self, job_id: str) -> JobRecord | None:
+        conn = self._conn()
+        row = self._job_row(conn, job_id)
+        return None if row is None else self._record(conn, row)
+
+    def list_jobs(
+        self,
+        *,
+        limit: int,
+        cursor: str | None = None,
+        status: JobStatus | None = None,
+        process_id: str | None = None,
+    ) -> JobPage:
+        clauses: list[str] = []
+        params: list[Any] = []
+        if cursor is not None:
+            clauses.append("seq < ?")
+            params.append(decode_cursor(cursor))
+        if status is not None:
+            clauses.append("status = ?")
+            params.append(status.value)
+        if process_id is not None:
+            clauses.append("process_id = ?")
+            params.append(process_id)
+        where = f"WHERE {' AND '.join(clauses)}" if clauses else ""
+        conn = self._conn()
+        rows = self._all(
+            conn, f"SELECT * FROM jobs {where} ORDER BY seq DESC LIMIT ?", (*params, limit + 1)
+        )
+        more = len(rows) > limit
+        rows = rows[:limit]
+        next_cursor = encode_cursor(rows[-1]["seq"]) if more and rows else None
+        return JobPage([self._record(conn, r) for r in rows], next_cursor)
+
+    # -- leases -----------------------------------------------------------------------
+    def _reap(self, conn: Conn, row: Row, now: float) -> JobStatus:
+        """Requeue one running job whose lease expired, or fail it if out of attempts."""
+        lost = f"worker {row['worker_id']} was lost during attempt {row['attempts']}"
+        if row["attempts"] >= row["max_attempts"]:
+            error = {
+                "type": "worker-lost",
+                "title": "Worker lost",
+                "detail": f"{lost}; no attempts left ({row['max_attempts']} allowed).",
+            }
+            self._exec(
+                conn,
+                "UPDATE jobs SET status = ?, error = ?, finished = ?, updated = ?, "
+                "lease_token = NULL, lease_expires = NULL, message = ? WHERE job_id = ?",
+                (JobStatus.FAILED.value, json.dumps(error), now, now, error["detail"],
+                 row["job_id"]),
+            )
+            return JobStatus.FAILED
+        self._exec(
+            conn,
+            "UPDATE jobs SET status = ?, updated = ?, lease_token = NULL, lease_expires = NULL,"
+            " progress = 0, dispatched = NULL, message = ? WHERE job_id = ?",
+            (_ACCEPTED, now, f"{lost}; queued for a retry", row["job_id"]),
+        )
+        return JobStatus.ACCEPTED
+
+    def reap_expired(self) -> list[str]:
+        """Requeue (or fail) every running job whose lease expired; the requeued IDs."""
+        now = time.time()
+        with self._write() as conn:
+            rows = self._all(
+                conn,
+                "SELECT job_id, attempts, max_attempts, worker_id FROM jobs "
+                f"WHERE status = ? AND lease_expires < ?{self.lock_clause}",
+                (_RUNNING, now),
+            )
+            return [r["job_id"] for r in rows if self._reap(conn, r, now) is JobStatus.ACCEPTED]
+
+    def _take(self, conn: Conn, job_id: str, worker_id: str, lease_s: float) -> Claim:
+        now = time.time()
+        token = uuid.uuid4().hex
+        self._exec(
+            conn,
+            """UPDATE jobs SET status = ?, lease_token = ?, lease_expires = ?,
+                   worker_id = ?, attempts = attempts + 1, attempt_started = ?,
+                   started = COALESCE(started, ?), updated = ?, progress = 0,
+                   message = 'running attempt ' || (attempts + 1)
+               WHERE job_id = ?""",
+            (_RUNNING, token, now + lease_s, worker_id, now, now, now, job_id),
+        )
+        return Claim(self._record(conn, self._job_row(conn, job_id)), token)
+
+    def claim_next(self, worker_id: str, lease_s: float) -> Claim | None:
+        self.reap_expired()
+        with self._write() as conn:
+            row = self._one(
+                conn,
+                f"SELECT job_id FROM jobs WHERE status = ? ORDER BY seq LIMIT 1"
+                f"{self.lock_clause}{' SKIP LOCKED' if self.lock_clause else ''}",
+                (_ACCEPTED,),
+            )
+            if row is None:
+                return None
+            return self._take(conn, row["job_id"], worker_id, lease_s)
+
+    def claim_job(self, job_id: str, worker_id: str, lease_s: float) -> ClaimAttempt:
+        now = time.time()
+        with self._write() as conn:
+            row = self._job_row(conn, job_id, lock=True)
+            if row is None:
+                return ClaimAttempt(None, None, None)
+            status = JobStatus(row["status"])
+            if status is JobStatus.RUNNING:
+                if row["lease_expires"] is not None and row["lease_expires"] >= now:
+                    return ClaimAttempt(None, status, row["lease_expires"] - now)
+                status = self._reap(conn, row, now)
+            if status is not JobStatus.ACCEPTED:
+                return ClaimAttempt(None, status, None)
+            return ClaimAttempt(self._take(conn, job_id, worker_id, lease_s), status, None)
+
+    def heartbeat(self, job_id: str, lease_token: str, lease_s: float) -> HeartbeatAck:
+        with self._write() as conn:
+            cur = self._exec(
+                conn,
+                "UPDATE jobs SET lease_expires = ? WHERE job_id = ? AND lease_token = ? "
+                "AND status = ?",
+                (time.time() + lease_s, job_id, lease_token, _RUNNING),
+            )
+            if cur.rowcount == 1:
+                return HeartbeatAck(True, JobStatus.RUNNING)
+            row = self._one(conn, "SELECT status FROM jobs WHERE job_id = ?", (job_id,))
+            return HeartbeatAck(False, None if row is None else JobStatus(row["status"]))
+
+    def report_progress(self, job_id: str, lease_token: str, percent: float, message: str) -> bool:
+        with self._write() as conn:
+            cur = self._exec(
+                conn,
+                "UPDATE jobs SET progress = ?, message = ?, updated = ? "
+                "WHERE job_id = ? AND lease_token = ? AND status = ?",
+                (max(0.0, min(100.0, percent)), message, time.time(), job_id, lease_token,
+                 _RUNNING),
+            )
+            return bool(cur.rowcount == 1)
+
+    def complete(
+        self,
+        job_id: str,
+        lease_token: str,
+        result: Mapping[str, Any],
+        artifacts: Sequence[Artifact],
+    ) -> bool:
+        now = time.time()
+        payload = json.dumps(result, allow_nan=False)
+        with self._write() as conn:
+            row = self._one(
+                conn,
+                "SELECT job_id FROM jobs WHERE job_id = ? AND lease_token = ? AND status = ?"
+                f"{self.lock_clause}",
+                (job_id, lease_token, _RUNNING),
+            )
+            if row is None:
+                return False
+            self._exec(conn, "DELETE FROM artifacts WHERE job_id = ?", (job_id,))
+            cur = conn.cursor()
+            cur.executemany(
+                self._sql(
+                    "INSERT INTO artifacts (job_id, name, media_type, title, size, data, ord) "
+                    "VALUES (?, ?, ?, ?, ?, ?, ?)"
+                ),
+                [(job_id, a.name, a.media_type, a.title, len(a.data), a.data, i)
+                 for i, a in enumerate(artifacts)],
+            )
+            self._exec(
+                conn,
+                "UPDATE jobs SET result = ?, status = ?, progress = 100, finished = ?, "
+                "updated = ?, message = 'finished', lease_token = NULL, lease_expires = NULL "
+                "WHERE job_id = ?",
+                (payload, JobStatus.SUCCESSFUL.value, now, now, job_id),
+            )
+            return True
+
+    def fail(self, job_id: str, lease_token: str, error: Mapping[str, Any]) -> bool:
+        now = time.time()
+        with self._write() as conn:
+            cur = self._exec(
+                conn,
+                "UPDATE jobs SET status = ?, error = ?, finished = ?, updated = ?, message = ?, "
+                "lease_token = NULL, lease_expires = NULL "
+                "WHERE job_id = ? AND lease_token = ? AND status = ?",
+                (JobStatus.FAILED.value, json.dumps(dict(error)), now, now,
+                 str(error.get("detail", "failed")), job_id, lease_token, _RUNNING),
+            )
+            return bool(cur.rowcount == 1)
+
+    def expire_leases_of(self, worker_id: str) -> int:
+        with self._write() as conn:
+            cur = self._exec(
+                conn,
+                "UPDATE jobs SET lease_expires = 0 WHERE worker_id = ? AND status = ?",
+                (worker_id, _RUNNING),
+            )
+            return int(cur.rowcount)
+
+    def dismiss(self, job_id: str) -> JobRecord | None:
+        now = time.time()
+        with self._write() as conn:
+            row = self._job_row(conn, job_id, lock=True)
+            if row is None:
+                return None
+            if row["status"] != JobStatus.DISMISSED.value:
+                self._exec(conn, "DELETE FROM artifacts WHERE job_id = ?", (job_id,))
+                self._exec(
+                    conn,
+                    "UPDATE jobs SET status = ?, result = NULL, finished = COALESCE(finished, ?),"
+                    " updated = ?, message = 'dismissed by the client' WHERE job_id = ?",
+                    (JobStatus.DISMISSED.value, now, now, job_id),
+                )
+            return self._record(conn, self._job_row(conn, job_id))
+
+    def get_result(self, job_id: str) -> Mapping[str, Any] | None:
+        row = self._one(
+            self._conn(),
+            "SELECT result FROM jobs WHERE job_id = ? AND status = ?",
+            (job_id, JobStatus.SUCCESSFUL.value),
+        )
+        return None if row is None or row["result"] is None else json.loads(row["result"])
+
+    def get_artifact(self, job_id: str, name: str) -> Artifact | None:
+        row = self._one(
+            self._conn(),
+            "SELECT name, media_type, data, title FROM artifacts WHERE job_id = ? AND name = ?",
+            (job_id, name),
+        )
+        if row is None:
+            return None
+        return Artifact(row["name"], row["media_type"], bytes(row["data"]), row["title"])
+
+    # -- dispatch bookkeeping ---------------------------------------------------------
+    def mark_dispatched(self, job_id: str) -> None:
+        with self._write() as conn:
+            self._exec(conn, "UPDATE jobs SET dispatched = ? WHERE job_id = ?",
+                       (time.time(), job_id))
+
+    def undispatched(self, older_than_s: float, limit: int = 100) -> list[str]:
+        """Accepted jobs never dispatched, or dispatched longer ago than ``older_than_s``."""
+        rows = self._all(
+            self._conn(),
+            "SELECT job_id FROM jobs WHERE status = ? AND (dispatched IS NULL OR dispatched < ?)"
+            " ORDER BY seq LIMIT ?",
+            (_ACCEPTED, time.time() - older_than_s, limit),
+        )
+        return [r["job_id"] for r in rows]
+
+    # -- worker registry --------------------------------------------------------------
+    def register_worker(self, worker_id: str, host: str, pid: int) -> None:
+        now = time.time()
+        with self._write() as conn:
+            self._exec(
+                conn,
+                "INSERT INTO workers (worker_id, host, pid, started, heartbeat) "
+                "VALUES (?, ?, ?, ?, ?) ON CONFLICT (worker_id) DO UPDATE SET "
+                "host = excluded.host, pid = excluded.pid, started = excluded.started, "
+                "heartbeat = excluded.heartbeat",
+                (worker_id, host, pid, now, now),
+            )
+
+    def worker_heartbeat(self, worker_id: str) -> None:
+        with self._write() as conn:
+            self._exec(conn, "UPDATE workers SET heartbeat = ? WHERE worker_id = ?",
+                       (time.time(), worker_id))
+
+    def unregister_worker(self, worker_id: str) -> None:
+        with self._write() as conn:
+            self._exec(conn, "DELETE FROM workers WHERE worker_id = ?", (worker_id,))
+
+    def live_workers(self, within_s: float) -> list[WorkerInfo]:
+        rows = self._all(
+            self._conn(),
+            "SELECT * FROM workers WHERE heartbeat >= ? ORDER BY started",
+            (time.time() - within_s,),
+        )
+        return [WorkerInfo(r["worker_id"], r["host"], r["pid"], r["started"], r["heartbeat"])
+                for r in rows]
