@@ -5,7 +5,7 @@ from __future__ import annotations
 import logging
 from collections.abc import AsyncIterator
 from contextlib import asynccontextmanager
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from fastapi import FastAPI
 from fastapi.responses import JSONResponse
@@ -14,9 +14,14 @@ from service.config import ServiceSettings
 from service.errors import install_error_handlers, problem_response
 from service.problems import PROBLEM_TYPES
 from service.routes import health, jobs, processes
+from worker.dispatch import Dispatcher, make_dispatcher
 from worker.pool import WorkerPool
 from worker.processes import default_registry
 from worker.store import open_store
+from worker.store.base import JobStore
+
+if TYPE_CHECKING:
+    from worker.dispatch.celery_dispatch import Sweeper
 
 __all__ = ["create_app"]
 
@@ -37,6 +42,19 @@ Every error is an RFC 9457 `application/problem+json` document.
 """
 
 
+def _start_sweeper(
+    settings: ServiceSettings, store: JobStore, dispatcher: Dispatcher
+) -> Sweeper | None:
+    if not settings.broker_url:
+        return None
+    from worker.dispatch.celery_dispatch import CeleryDispatch, Sweeper
+
+    assert isinstance(dispatcher, CeleryDispatch)
+    sweeper = Sweeper(settings, store, dispatcher)
+    sweeper.start()
+    return sweeper
+
+
 def create_app(settings: ServiceSettings | None = None) -> FastAPI:
     """Build the app.  The store opens and the pool starts when the app starts."""
     settings = settings or ServiceSettings()
@@ -44,11 +62,17 @@ def create_app(settings: ServiceSettings | None = None) -> FastAPI:
     @asynccontextmanager
     async def lifespan(app: FastAPI) -> AsyncIterator[None]:
         store = open_store(settings.resolved_store_url())
-        pool = WorkerPool(settings, store) if settings.workers > 0 else None
+        dispatcher = make_dispatcher(settings, store)
+        # With a broker, this process serves the API only; Celery workers run the jobs
+        # and a sweeper here re-sends jobs whose worker died.
+        pool = WorkerPool(settings, store) if settings.workers > 0 and not settings.broker_url \
+            else None
+        sweeper = _start_sweeper(settings, store, dispatcher)
         app.state.settings = settings
         app.state.store = store
         app.state.registry = default_registry()
         app.state.pool = pool
+        app.state.dispatcher = dispatcher
         if pool is not None:
             pool.start()
         try:
@@ -56,6 +80,10 @@ def create_app(settings: ServiceSettings | None = None) -> FastAPI:
         finally:
             if pool is not None:
                 pool.stop()
+            if sweeper is not None:
+                sweeper.stop()
+            dispatcher.close()
+            store.close()
 
     app = FastAPI(
         title="dexlab",

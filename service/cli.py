@@ -17,6 +17,10 @@ def _common(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--data-dir", type=Path, help="where the SQLite store lives (./data)")
     parser.add_argument("--store-url", help="job store URL (default sqlite:///<data-dir>/jobs.db)")
     parser.add_argument(
+        "--broker-url",
+        help="Celery broker (redis://... or amqp://...); unset: the local worker pool",
+    )
+    parser.add_argument(
         "--workers", type=int, help="worker processes (default: the CPU count; 0: none)"
     )
     parser.add_argument("--log-level", default=None, help="debug, info, warning, error")
@@ -40,6 +44,9 @@ def _overrides(args: argparse.Namespace, names: Sequence[str]) -> dict[str, Any]
     return {n: getattr(args, n) for n in names if getattr(args, n, None) is not None}
 
 
+_SERVE_OPTIONS = ("host", "port", "data_dir", "store_url", "broker_url", "workers", "log_level")
+
+
 def _serve(args: argparse.Namespace) -> None:
     import uvicorn
 
@@ -47,7 +54,7 @@ def _serve(args: argparse.Namespace) -> None:
     from service.config import ServiceSettings
 
     settings = ServiceSettings(
-        **_overrides(args, ("host", "port", "data_dir", "store_url", "workers", "log_level"))
+        **_overrides(args, _SERVE_OPTIONS)
     )
     logging.basicConfig(level=settings.log_level.upper(),
                         format="%(asctime)s %(process)d %(name)s %(levelname)s %(message)s")
@@ -60,11 +67,18 @@ def _worker(args: argparse.Namespace) -> None:
     from worker.settings import WorkerSettings
     from worker.store import open_store
 
-    settings = WorkerSettings(**_overrides(args, ("data_dir", "store_url", "workers")))
+    settings = WorkerSettings(
+        **_overrides(args, ("data_dir", "store_url", "broker_url", "workers"))
+    )
     logging.basicConfig(level=(args.log_level or "info").upper(),
                         format="%(asctime)s %(process)d %(name)s %(levelname)s %(message)s")
     if settings.workers < 1:
         raise SystemExit("dexlab worker: --workers must be at least 1")
+    if settings.broker_url:
+        from worker.dispatch.celery_worker import run_celery_worker
+
+        run_celery_worker(settings, (args.log_level or "info").upper())
+        return
     store = open_store(settings.resolved_store_url())
     pool = WorkerPool(settings, store)
     stop = threading.Event()

@@ -7,11 +7,12 @@ from typing import Annotated
 from fastapi import Depends, Request
 
 from service.config import ServiceSettings
+from worker.dispatch import Dispatcher
 from worker.pool import WorkerPool
 from worker.processes import ProcessRegistry
 from worker.store.base import JobStore
 
-__all__ = ["PoolDep", "RegistryDep", "SettingsDep", "StoreDep"]
+__all__ = ["DispatcherDep", "PoolDep", "RegistryDep", "SettingsDep", "StoreDep"]
 
 
 def get_store(request: Request) -> JobStore:
@@ -34,7 +35,13 @@ def get_pool(request: Request) -> WorkerPool | None:
     return pool
 
 
+def get_dispatcher(request: Request) -> Dispatcher:
+    dispatcher: Dispatcher = request.app.state.dispatcher
+    return dispatcher
+
+
 StoreDep = Annotated[JobStore, Depends(get_store)]
 RegistryDep = Annotated[ProcessRegistry, Depends(get_registry)]
 SettingsDep = Annotated[ServiceSettings, Depends(get_settings)]
 PoolDep = Annotated[WorkerPool | None, Depends(get_pool)]
+DispatcherDep = Annotated[Dispatcher, Depends(get_dispatcher)]

@@ -39,6 +39,23 @@ class WorkerSettings(BaseSettings):
     max_time_limit_s: float | None = Field(
         None, gt=0, description="Cap on every process's time limit (seconds)."
     )
+    broker_url: str | None = Field(
+        None,
+        description="Celery broker (redis://... or amqp://...); unset: the local pool.",
+    )
+    queue: str = Field("dexlab", min_length=1, description="The broker queue jobs go to.")
+    broker_visibility_timeout_s: float = Field(
+        7200.0, gt=0, description="Redis broker: when an unacknowledged message returns."
+    )
+    amqp_consumer_timeout_s: float = Field(
+        1800.0, gt=0, description="RabbitMQ's consumer_timeout (its default: 30 min)."
+    )
+    sweep_seconds: float = Field(
+        2.0, gt=0, description="How often expired leases are reaped and lost jobs re-sent."
+    )
+    redispatch_after_s: float = Field(
+        30.0, gt=0, description="Re-send an accepted job not claimed this long after dispatch."
+    )
 
     def resolved_store_url(self) -> str:
         """The store URL, defaulting to the SQLite file in the data directory."""
@@ -46,8 +63,23 @@ class WorkerSettings(BaseSettings):
             return self.store_url
         return f"sqlite:///{(self.data_dir / 'jobs.db').resolve()}"
 
+    def broker_redelivery_window_s(self) -> float | None:
+        """How long the broker lets a job's message stay unacknowledged before it hands
+        it out again (None: no broker)."""
+        if not self.broker_url:
+            return None
+        if self.broker_url.startswith(("amqp", "pyamqp")):
+            return self.amqp_consumer_timeout_s
+        return self.broker_visibility_timeout_s
+
     def time_limit_for(self, process_limit_s: float) -> float:
-        """The time limit a job gets: the process's, capped by ``max_time_limit_s``."""
-        if self.max_time_limit_s is None:
-            return process_limit_s
-        return min(process_limit_s, self.max_time_limit_s)
+        """The time limit a job gets: the process's, capped by ``max_time_limit_s`` and,
+        with a broker, kept 10% below the broker's redelivery window (so a running job's
+        message is never handed out again while it runs)."""
+        limit = process_limit_s
+        if self.max_time_limit_s is not None:
+            limit = min(limit, self.max_time_limit_s)
+        window = self.broker_redelivery_window_s()
+        if window is not None:
+            limit = min(limit, 0.9 * window)
+        return limit

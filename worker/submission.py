@@ -14,6 +14,7 @@ from typing import Any
 from pydantic import BaseModel, ValidationError
 
 from worker.contract import JobRecord
+from worker.dispatch import Dispatcher
 from worker.errors import CostLimitExceeded, InvalidInputs, NoSuchProcess
 from worker.processes import ProcessDefinition, ProcessRegistry
 from worker.settings import WorkerSettings
@@ -64,8 +65,13 @@ def submit(
     process_id: str,
     raw_inputs: Mapping[str, Any],
     idempotency_key: str | None = None,
+    dispatcher: Dispatcher | None = None,
 ) -> tuple[JobRecord, bool]:
-    """Validate, check the cost limit and commit a job; ``(job, created)``."""
+    """Validate, check the cost limit, commit a job, then dispatch it; ``(job, created)``.
+
+    The job is committed before it is dispatched, so a broker outage loses nothing (the
+    sweeper sends it later); a replayed idempotent request is not dispatched again.
+    """
     definition = registry.get(process_id)
     if definition is None:
         raise NoSuchProcess(
@@ -90,4 +96,7 @@ def submit(
         idempotency_key=idempotency_key,
         request_hash=request_hash(process_id, raw_inputs) if idempotency_key else None,
     )
-    return store.create_job(new)
+    job, created = store.create_job(new)
+    if created and dispatcher is not None:
+        dispatcher.dispatch(job.job_id, job.time_limit_s)
+    return job, created

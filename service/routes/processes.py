@@ -7,7 +7,7 @@ from typing import Annotated, Any
 from fastapi import APIRouter, Header, Response
 from pydantic import BaseModel, ConfigDict, Field
 
-from service.deps import RegistryDep, SettingsDep, StoreDep
+from service.deps import DispatcherDep, RegistryDep, SettingsDep, StoreDep
 from service.documents import job_href, status_document
 from worker.errors import NoSuchProcess
 from worker.submission import submit
@@ -62,11 +62,14 @@ def execute(
     store: StoreDep,
     registry: RegistryDep,
     settings: SettingsDep,
+    dispatcher: DispatcherDep,
     idempotency_key: Annotated[
         str | None, Header(alias="Idempotency-Key", min_length=1, max_length=255)
     ] = None,
 ) -> dict[str, Any]:
-    job, created = submit(store, registry, settings, process_id, body.inputs, idempotency_key)
+    job, created = submit(
+        store, registry, settings, process_id, body.inputs, idempotency_key, dispatcher
+    )
     response.headers["Location"] = job_href(job.job_id)
     if not created:
         response.headers["Idempotent-Replayed"] = "true"

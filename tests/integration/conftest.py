@@ -1,8 +1,14 @@
-"""Fixtures that run the real service: the ASGI app with its pool, or `dexlab serve`."""
+"""Fixtures that run the real service, on each backend.
+
+Every integration test runs once per backend: the embedded default (SQLite + local
+pool) and PostgreSQL + Celery with a real broker (Redis, RabbitMQ).  Where PostgreSQL
+or a broker is not reachable those runs skip, or fail under DEXLAB_REQUIRE_SERVICES.
+"""
 
 from __future__ import annotations
 
 from collections.abc import AsyncIterator, Iterator
+from contextlib import ExitStack
 from pathlib import Path
 
 import httpx
@@ -10,7 +16,9 @@ import pytest
 
 from service.app import create_app
 from service.config import ServiceSettings
-from tests.integration.servers import Server, start_server, stop_server
+from tests.integration.servers import BACKENDS, Deployment, backend_env, deployment
+
+pytestmark = pytest.mark.integration
 
 
 @pytest.fixture
@@ -18,20 +26,40 @@ def anyio_backend() -> str:
     return "asyncio"
 
 
+@pytest.fixture(params=BACKENDS)
+def backend(request: pytest.FixtureRequest) -> str:
+    return str(request.param)
+
+
 @pytest.fixture
-async def asgi_client(tmp_path: Path) -> AsyncIterator[httpx.AsyncClient]:
-    """The real app (lifespan, SQLite store, a one-process pool) over httpx's ASGI transport."""
-    settings = ServiceSettings(data_dir=tmp_path, workers=1, heartbeat_seconds=0.5)
-    app = create_app(settings)
-    async with app.router.lifespan_context(app):
-        transport = httpx.ASGITransport(app=app)
-        async with httpx.AsyncClient(transport=transport, base_url="http://dexlab.test") as c:
-            yield c
+async def asgi_client(backend: str, tmp_path: Path) -> AsyncIterator[httpx.AsyncClient]:
+    """The real app over httpx's ASGI transport: with its one-process pool (embedded),
+    or as the API of a Celery deployment with one `dexlab worker` process."""
+    with ExitStack() as stack:
+        env = backend_env(backend, stack)
+        settings = ServiceSettings(
+            data_dir=tmp_path,
+            workers=1,
+            heartbeat_seconds=0.5,
+            store_url=env.get("DEXLAB_STORE_URL"),
+            broker_url=env.get("DEXLAB_BROKER_URL"),
+            queue=env.get("DEXLAB_QUEUE", "dexlab"),
+        )
+        if backend != "embedded":
+            workers = Deployment(backend, tmp_path, env)
+            stack.callback(workers.stop)
+            workers.start_worker(1)
+        app = create_app(settings)
+        async with app.router.lifespan_context(app):
+            transport = httpx.ASGITransport(app=app)
+            async with httpx.AsyncClient(transport=transport, base_url="http://dexlab.test") as c:
+                yield c
 
 
-@pytest.fixture(scope="module")
-def server(tmp_path_factory: pytest.TempPathFactory) -> Iterator[Server]:
-    """`dexlab serve` with a two-process pool, shared by a test module."""
-    srv = start_server(tmp_path_factory.mktemp("dexlab"), workers=2)
-    yield srv
-    stop_server(srv)
+@pytest.fixture(scope="module", params=BACKENDS)
+def server(
+    request: pytest.FixtureRequest, tmp_path_factory: pytest.TempPathFactory
+) -> Iterator[Deployment]:
+    """A deployment with two worker processes, shared by a test module."""
+    with deployment(str(request.param), tmp_path_factory.mktemp("dexlab")) as dep:
+        yield dep

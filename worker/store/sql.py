@@ -420,10 +420,10 @@ class SqlJobStore:
                        (time.time(), job_id))
 
     def undispatched(self, older_than_s: float, limit: int = 100) -> list[str]:
-        """Accepted jobs never dispatched, or dispatched longer ago than ``older_than_s``."""
+        """Accepted jobs dispatched (or, never dispatched, created) over ``older_than_s`` ago."""
         rows = self._all(
             self._conn(),
-            "SELECT job_id FROM jobs WHERE status = ? AND (dispatched IS NULL OR dispatched < ?)"
+            "SELECT job_id FROM jobs WHERE status = ? AND COALESCE(dispatched, created) < ?"
             " ORDER BY seq LIMIT ?",
             (_ACCEPTED, time.time() - older_than_s, limit),
         )

@@ -1,0 +1,91 @@
+"""Sending job IDs to Celery, and the sweeper that re-sends lost ones."""
+
+from __future__ import annotations
+
+import logging
+import threading
+
+from worker.dispatch.celery_app import RUN_JOB, create_celery_app
+from worker.settings import WorkerSettings
+from worker.store.base import JobStore
+
+__all__ = ["CeleryDispatch", "Sweeper"]
+
+log = logging.getLogger("dexlab.dispatch")
+
+#: Celery's hard time limit is a backstop behind the worker's own (which records why).
+HARD_LIMIT_GRACE_S = 60.0
+
+
+class CeleryDispatch:
+    """Sends ``dexlab.run_job(job_id)`` with the job ID as the task ID."""
+
+    def __init__(self, settings: WorkerSettings, store: JobStore) -> None:
+        self.settings = settings
+        self.store = store
+        self.app = create_celery_app(settings)
+
+    def dispatch(self, job_id: str, time_limit_s: float) -> None:
+        try:
+            self.app.send_task(
+                RUN_JOB,
+                args=[job_id],
+                task_id=job_id,
+                queue=self.settings.queue,
+                time_limit=time_limit_s + HARD_LIMIT_GRACE_S,
+                retry=True,
+                retry_policy={"max_retries": 2, "interval_start": 0.2, "interval_step": 0.5},
+            )
+        except Exception:  # the job is committed; the sweeper sends it again later
+            log.exception("could not send job %s to the broker; it will be re-sent", job_id)
+            return
+        self.store.mark_dispatched(job_id)
+
+    def close(self) -> None:
+        self.app.close()
+
+
+class Sweeper(threading.Thread):
+    """Every ``sweep_seconds``: requeue jobs whose lease expired (their worker died)
+    and send them again, and re-send accepted jobs whose message was lost.
+
+    Runs beside the API (broker mode) and in each ``dexlab worker``; running several is
+    harmless, since a job is claimed in the store exactly once per attempt.
+    """
+
+    def __init__(
+        self,
+        settings: WorkerSettings,
+        store: JobStore,
+        dispatcher: CeleryDispatch,
+        worker_id: str | None = None,
+    ) -> None:
+        super().__init__(name="dexlab-sweeper", daemon=True)
+        self.settings = settings
+        self.store = store
+        self.dispatcher = dispatcher
+        self.worker_id = worker_id
+        self._stop = threading.Event()
+
+    def stop(self) -> None:
+        self._stop.set()
+
+    def sweep(self) -> int:
+        """One pass; the number of jobs sent."""
+        if self.worker_id is not None:
+            self.store.worker_heartbeat(self.worker_id)
+        job_ids = self.store.reap_expired()
+        job_ids += self.store.undispatched(self.settings.redispatch_after_s)
+        for job_id in dict.fromkeys(job_ids):
+            job = self.store.get_job(job_id)
+            if job is not None:
+                log.info("re-sending job %s to the broker", job_id)
+                self.dispatcher.dispatch(job_id, job.time_limit_s)
+        return len(job_ids)
+
+    def run(self) -> None:
+        while not self._stop.wait(self.settings.sweep_seconds):
+            try:
+                self.sweep()
+            except Exception:  # a store or broker hiccup: try again next time
+                log.exception("sweep failed")
