@@ -6,7 +6,9 @@ WORKDIR /app
 COPY pyproject.toml README.md ./
 COPY service ./service
 COPY worker ./worker
-RUN pip install --no-cache-dir .
+# The same install as the README's, with the scale-out extra (Celery, Redis/AMQP
+# clients, psycopg) so one image serves as API or worker, embedded or distributed.
+RUN pip install --no-cache-dir '.[distributed]'
 
 RUN useradd --create-home dexlab && mkdir /data && chown dexlab /data
 USER dexlab

@@ -47,9 +47,8 @@ def _start_sweeper(
 ) -> Sweeper | None:
     if not settings.broker_url:
         return None
-    from worker.dispatch.celery_dispatch import CeleryDispatch, Sweeper
+    from worker.dispatch.celery_dispatch import Sweeper
 
-    assert isinstance(dispatcher, CeleryDispatch)
     sweeper = Sweeper(settings, store, dispatcher)
     sweeper.start()
     return sweeper

@@ -5,6 +5,7 @@ from __future__ import annotations
 import logging
 import threading
 
+from worker.dispatch import Dispatcher
 from worker.dispatch.celery_app import RUN_JOB, create_celery_app
 from worker.settings import WorkerSettings
 from worker.store.base import JobStore
@@ -57,7 +58,7 @@ class Sweeper(threading.Thread):
         self,
         settings: WorkerSettings,
         store: JobStore,
-        dispatcher: CeleryDispatch,
+        dispatcher: Dispatcher,
         worker_id: str | None = None,
     ) -> None:
         super().__init__(name="dexlab-sweeper", daemon=True)

@@ -237,7 +237,7 @@ class SqlJobStore:
         self._exec(
             conn,
             "UPDATE jobs SET status = ?, updated = ?, lease_token = NULL, lease_expires = NULL,"
-            " progress = 0, dispatched = NULL, message = ? WHERE job_id = ?",
+            " progress = 0, dispatched = 0, message = ? WHERE job_id = ?",
             (_ACCEPTED, now, f"{lost}; queued for a retry", row["job_id"]),
         )
         return JobStatus.ACCEPTED

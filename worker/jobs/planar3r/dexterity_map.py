@@ -83,9 +83,13 @@ def run_dexterity_map(spec: DexterityMapSpec, ctx: JobContext) -> JobOutcome:
     notes = _notes(spec, sampling, task_entries, trajectory)
     notes += dexterity_map_errata_notes(spec, result)
 
-    progress.report(90.0, "plots")
-    path = None if spec.trajectory is None else trajectory_path(spec.trajectory)
-    artifacts = _plots(spec, sampling is not None, grid, d_z, task_xy, path, (radial_d, radial_dz))
+    artifacts: tuple[Artifact, ...] = ()
+    if spec.plots:
+        progress.report(90.0, "plots")
+        path = None if spec.trajectory is None else trajectory_path(spec.trajectory)
+        artifacts = _plots(
+            spec, sampling is not None, grid, d_z, task_xy, path, (radial_d, radial_dz)
+        )
     progress.report(97.0, "data files")
     artifacts += _data(spec, grid, d_z, region)
     progress.report(100.0, "done")

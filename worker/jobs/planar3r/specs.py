@@ -243,6 +243,11 @@ class _TaskSpec(_Spec):
     length_unit: str = Field(
         "units", min_length=1, max_length=16, pattern=r"^[\w .°/-]+$", description=_UNIT_DESCRIPTION
     )
+    plots: bool = Field(
+        True,
+        description="Render the PNG/SVG plots. false: data files (CSV/NPZ) only, much "
+        "faster for design sweeps.",
+    )
 
     @model_validator(mode="after")
     def _labels_match_points(self) -> _TaskSpec:

@@ -233,6 +233,10 @@ def _artifacts(
     spec: SynthesisSpec, grid: WorkspaceGrid, cases: list[CaseResult]
 ) -> tuple[Artifact, ...]:
     task_xy = _task_xy(spec)
+    data = npz_artifact("synthesis_cases.npz", _case_arrays(spec, grid, cases, task_xy),
+                        "d_z maps of the cases (NumPy arrays)")
+    if not spec.plots:
+        return (data,)
     path = None if spec.trajectory is None else trajectory_path(spec.trajectory)
     panels = [
         plots.CasePanel(
@@ -256,13 +260,19 @@ def _artifacts(
         title=f"Synthesised design ({l1:.6g}, {l2:.6g}, {l3:.6g}): the paper's cases",
         length_unit=spec.length_unit,
     )
+    return (
+        *figure_artifacts(figure, "synthesis_cases", "d_z of the design in the paper's cases"),
+        data,
+    )
+
+
+def _case_arrays(
+    spec: SynthesisSpec, grid: WorkspaceGrid, cases: list[CaseResult], task_xy: NDArray[Any]
+) -> dict[str, NDArray[np.generic]]:
     arrays: dict[str, NDArray[np.generic]] = {"x": grid.x, "y": grid.y, "task_points": task_xy}
     if spec.trajectory is not None:
         arrays["trajectory_samples"] = trajectory_samples(spec.trajectory)
     for case in cases:
         arrays[f"d_z_case{case.case}"] = case.d_z
         arrays[f"links_case{case.case}"] = np.asarray(case.links)
-    return (
-        *figure_artifacts(figure, "synthesis_cases", "d_z of the design in the paper's cases"),
-        npz_artifact("synthesis_cases.npz", arrays, "d_z maps of the cases (NumPy arrays)"),
-    )
+    return arrays

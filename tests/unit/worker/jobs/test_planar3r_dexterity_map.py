@@ -364,3 +364,20 @@ def test_polynomial_samples_are_even_in_x() -> None:
     spec = PolynomialTrajectory(polynomial=(1.0, 0.0, 0.0), x_start=2.0, x_end=0.0, samples=3)
     np.testing.assert_allclose(trajectory_samples(spec), [[2, 4], [1, 1], [0, 0]])
     assert trajectory_path(spec).shape == (400, 2)
+
+
+def test_plots_false_gives_data_files_only(ctx: RecordingContext) -> None:
+    from worker.jobs.planar3r.specs import SynthesisSpec
+    from worker.jobs.planar3r.synthesis import run_synthesis
+
+    spec = DexterityMapSpec.model_validate(
+        {"links": [15, 14, 8], "grid": {"points_per_axis": 11}, "plots": False}
+    )
+    outcome = run_dexterity_map(spec, ctx)
+    assert {a.name for a in outcome.artifacts} == {"dexterity_map.csv", "dexterity_map.npz"}
+    synth = SynthesisSpec.model_validate(
+        {"task_points": [[16, 19], [18, 0]], "l3": 15, "grid": {"points_per_axis": 11},
+         "plots": False}
+    )
+    outcome = run_synthesis(synth, ctx)
+    assert [a.name for a in outcome.artifacts] == ["synthesis_cases.npz"]

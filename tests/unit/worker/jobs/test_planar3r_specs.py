@@ -238,11 +238,11 @@ def test_process_definition(process: Any) -> None:
 def test_public_field_names() -> None:
     assert set(DexterityMapSpec.model_json_schema()["properties"]) == {
         "links", "joint_limits_deg", "grid", "orientation_step_deg", "task_points",
-        "task_labels", "trajectory", "length_unit",
+        "task_labels", "trajectory", "length_unit", "plots",
     }  # fmt: skip
     assert set(SynthesisSpec.model_json_schema()["properties"]) == {
         "task_points", "task_labels", "trajectory", "l3", "joint_limits_deg",
-        "round_distances", "orientation_step_deg", "grid", "length_unit",
+        "round_distances", "orientation_step_deg", "grid", "length_unit", "plots",
     }  # fmt: skip
 
 

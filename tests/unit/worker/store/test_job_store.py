@@ -201,11 +201,11 @@ def test_claim_job_fails_a_job_out_of_attempts(store: JobStore) -> None:
 def test_dispatch_bookkeeping_and_reaping(store: JobStore) -> None:
     a, _ = store.create_job(new_job())
     b, _ = store.create_job(new_job())
-    time.sleep(0.01)
-    assert store.undispatched(0.0) == [a.job_id, b.job_id]
+    time.sleep(0.3)
+    assert store.undispatched(0.2) == [a.job_id, b.job_id]
     assert store.undispatched(60.0) == []
     store.mark_dispatched(a.job_id)
-    assert store.undispatched(0.0) == [b.job_id]
+    assert store.undispatched(0.2) == [b.job_id]
     claim = store.claim_job(a.job_id, "w", 10).claim
     assert claim is not None
     assert store.reap_expired() == []

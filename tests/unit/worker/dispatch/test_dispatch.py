@@ -1,0 +1,70 @@
+"""Dispatch selection, the sweeper (with a recording fake dispatcher) and time limits."""
+
+from __future__ import annotations
+
+import time
+from pathlib import Path
+
+from worker.dispatch import LocalDispatch, make_dispatcher
+from worker.dispatch.celery_dispatch import CeleryDispatch, Sweeper
+from worker.settings import WorkerSettings
+from worker.store import open_store
+from worker.store.base import NewJob
+
+
+class RecordingDispatch:
+    def __init__(self) -> None:
+        self.sent: list[tuple[str, float]] = []
+
+    def dispatch(self, job_id: str, time_limit_s: float) -> None:
+        self.sent.append((job_id, time_limit_s))
+
+    def close(self) -> None:
+        pass
+
+
+def test_no_broker_means_the_local_pool(tmp_path: Path) -> None:
+    store = open_store(f"sqlite:///{tmp_path / 'j.db'}")
+    assert isinstance(make_dispatcher(WorkerSettings(), store), LocalDispatch)
+
+
+def test_broker_url_means_celery_without_connecting(tmp_path: Path) -> None:
+    store = open_store(f"sqlite:///{tmp_path / 'j.db'}")
+    settings = WorkerSettings(broker_url="redis://127.0.0.1:1/0")
+    dispatcher = make_dispatcher(settings, store)
+    assert isinstance(dispatcher, CeleryDispatch)
+    conf = dispatcher.app.conf
+    assert conf.task_acks_late and conf.task_reject_on_worker_lost
+    assert conf.worker_prefetch_multiplier == 1
+    assert conf.accept_content == ["json"] and conf.task_serializer == "json"
+    dispatcher.close()
+
+
+def test_sweeper_resends_lost_and_expired_jobs(tmp_path: Path) -> None:
+    store = open_store(f"sqlite:///{tmp_path / 'j.db'}")
+    settings = WorkerSettings(redispatch_after_s=0.01)
+    fake = RecordingDispatch()
+    sweeper = Sweeper(settings, store, fake, worker_id="h:1")
+    store.register_worker("h:1", "h", 1)
+    lost, _ = store.create_job(NewJob("p", {}, time_limit_s=30, max_attempts=3))
+    running, _ = store.create_job(NewJob("p", {}, time_limit_s=40, max_attempts=3))
+    store.mark_dispatched(running.job_id)
+    time.sleep(0.02)
+    claim = store.claim_job(running.job_id, "w", 10).claim
+    assert claim is not None
+    assert sweeper.sweep() == 1 and fake.sent == [(lost.job_id, 30)]
+    store.mark_dispatched(lost.job_id)
+    store.expire_leases_of("w")  # the worker running it died
+    fake.sent.clear()
+    sweeper.sweep()
+    assert (running.job_id, 40) in fake.sent
+
+
+def test_time_limits_stay_below_the_brokers_redelivery_window() -> None:
+    assert WorkerSettings().time_limit_for(1800) == 1800
+    assert WorkerSettings(max_time_limit_s=60).time_limit_for(1800) == 60
+    amqp = WorkerSettings(broker_url="amqp://guest:guest@127.0.0.1:5672//")
+    assert amqp.time_limit_for(1800) == 0.9 * 1800
+    redis = WorkerSettings(broker_url="redis://127.0.0.1:6379/0",
+                           broker_visibility_timeout_s=1000)
+    assert redis.time_limit_for(1800) == 900

@@ -1,0 +1,101 @@
+"""Input normalisation shared by the three-link planar arm modules (once, at every public entry).
+
+Each check returns its argument as float64 data (a copy only if needed) or raises a
+ValueError naming the parameter, the function and what it must be. The array aliases
+used across :mod:`worker.kinematics.planar_serial` and its helpers live here too.
+"""
+
+from __future__ import annotations
+
+import math
+import numbers
+from collections.abc import Callable
+from typing import Any
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+__all__ = [
+    "BoolArray",
+    "FloatArray",
+    "Links",
+    "bad_parameter",
+    "checked_array",
+    "checked_joint_limits",
+    "checked_links",
+    "checked_points",
+    "sample_count",
+]
+
+FloatArray = NDArray[np.float64]
+BoolArray = NDArray[np.bool_]
+Links = tuple[float, float, float]
+
+
+def bad_parameter(parameter: str, function: str, requirement: str, got: Any) -> ValueError:
+    shown = repr(got)
+    if len(shown) > 80:  # long arrays: name the shape, not the values
+        try:
+            shown = f"an array of shape {np.shape(got)}"
+        except ValueError:
+            shown = shown[:77] + "..."
+    return ValueError(
+        f"The {parameter!r} parameter of {function} must be {requirement}. Got {shown} instead."
+    )
+
+
+def checked_array(
+    value: object,
+    parameter: str,
+    function: str,
+    requirement: str,
+    valid: Callable[[FloatArray], bool],
+) -> FloatArray:
+    """``value`` as a float64 array (a copy only if needed), or a ValueError naming it."""
+    try:
+        arr = np.asarray(value, dtype=np.float64)
+    except (TypeError, ValueError):
+        raise bad_parameter(parameter, function, requirement, value) from None
+    if not (np.all(np.isfinite(arr)) and valid(arr)):
+        raise bad_parameter(parameter, function, requirement, value)
+    return arr
+
+
+def checked_links(links: ArrayLike, function: str) -> Links:
+    arr = checked_array(
+        links,
+        "links",
+        function,
+        "three finite positive lengths (l1, l2, l3)",
+        lambda a: a.shape == (3,) and bool(np.all(a > 0)),
+    )
+    return float(arr[0]), float(arr[1]), float(arr[2])
+
+
+def checked_points(points: ArrayLike, function: str) -> FloatArray:
+    return checked_array(
+        points,
+        "points",
+        function,
+        "finite (x, y) coordinates of shape (..., 2)",
+        lambda a: a.ndim >= 1 and a.shape[-1] == 2,
+    )
+
+
+def sample_count(step: float, function: str) -> int:
+    if not (isinstance(step, numbers.Real) and step > 0 and math.isfinite(2.0 * math.pi / step)):
+        raise bad_parameter("step", function, "a finite positive angle in radians", step)
+    return max(1, round(2.0 * math.pi / float(step)))
+
+
+def checked_joint_limits(joint_limits: ArrayLike, function: str) -> FloatArray:
+    return checked_array(
+        joint_limits,
+        "joint_limits",
+        function,
+        "(3, 2) radians [[lo, hi], ...] with -pi <= lo <= hi <= pi",
+        lambda a: (
+            a.shape == (3, 2)
+            and bool(np.all((-np.pi <= a[:, 0]) & (a[:, 0] <= a[:, 1]) & (a[:, 1] <= np.pi)))
+        ),
+    )
