@@ -47,6 +47,9 @@ class ProcessDefinition:
     cost_unit: str = "grid points x orientation samples"
     time_limit_s: float = 900.0
     version: str = "1.0.0"
+    #: Requests costing at most this may be answered synchronously (``Prefer: wait=N``);
+    #: 0: never.
+    sync_cost_limit: int = 0
 
     def describe(self) -> dict[str, Any]:
         """The process description served at ``GET /v1/processes/{id}``."""
@@ -55,7 +58,11 @@ class ProcessDefinition:
             "title": self.title,
             "description": self.description,
             "version": self.version,
-            "jobControlOptions": ["async-execute", "dismiss"],
+            "jobControlOptions": (
+                ["async-execute", "sync-execute", "dismiss"]
+                if self.sync_cost_limit
+                else ["async-execute", "dismiss"]
+            ),
             "inputs": self.inputs_model.model_json_schema(),
             "outputs": dict(self.outputs),
             "examples": [
@@ -66,6 +73,7 @@ class ProcessDefinition:
                 "cost_limit": self.cost_limit,
                 "cost_unit": self.cost_unit,
                 "time_limit_s": self.time_limit_s,
+                "sync_cost_limit": self.sync_cost_limit,
             },
         }
 

@@ -20,7 +20,7 @@ from worker.processes import ProcessDefinition, ProcessRegistry
 from worker.settings import WorkerSettings
 from worker.store.base import JobStore, NewJob
 
-__all__ = ["field_errors", "request_hash", "submit", "validate_inputs"]
+__all__ = ["field_errors", "request_hash", "submit", "synchronous_allowed", "validate_inputs"]
 
 
 def field_errors(exc: ValidationError, prefix: tuple[str | int, ...] = ()) -> list[dict[str, Any]]:
@@ -100,3 +100,12 @@ def submit(
     if created and dispatcher is not None:
         dispatcher.dispatch(job.job_id, job.time_limit_s)
     return job, created
+
+
+def synchronous_allowed(registry: ProcessRegistry, process_id: str, raw: Mapping[str, Any]) -> bool:
+    """Whether a request may be answered synchronously: the process allows it and the
+    request's cost is within the process's ``sync_cost_limit``."""
+    definition = registry.get(process_id)
+    if definition is None or not definition.sync_cost_limit:
+        return False
+    return definition.cost(validate_inputs(definition, raw)) <= definition.sync_cost_limit

@@ -2,13 +2,14 @@
 
 from __future__ import annotations
 
+import time
 from typing import Annotated, Any
 
 from fastapi import APIRouter, Query, Response
 
 from service.deps import StoreDep
 from service.documents import results_document, status_document
-from worker.contract import JobRecord, JobStatus
+from worker.contract import TERMINAL_STATUSES, JobRecord, JobStatus
 from worker.errors import (
     InvalidInputs,
     JobDismissed,
@@ -86,13 +87,32 @@ def _finished(store: JobStore, job_id: str) -> JobRecord:
     return job
 
 
+def finished_document(store: JobStore, job: JobRecord) -> dict[str, Any]:
+    """The result document of a finished job, or the problem that says why there is none."""
+    job = _finished(store, job.job_id)
+    result = store.get_result(job.job_id)
+    if result is None:  # dismissed between the two reads
+        raise JobDismissed(f"Job {job.job_id} was dismissed; it has no results.")
+    return results_document(job, result)
+
+
+def wait_for_job(store: JobStore, job_id: str, timeout_s: float) -> JobRecord | None:
+    """The job once it reaches a terminal status, or None after ``timeout_s``."""
+    deadline = time.monotonic() + timeout_s
+    delay = 0.02
+    while True:
+        job = store.get_job(job_id)
+        if job is not None and job.status in TERMINAL_STATUSES:
+            return job
+        if time.monotonic() >= deadline:
+            return None
+        time.sleep(min(delay, max(0.0, deadline - time.monotonic())))
+        delay = min(delay * 1.5, 0.25)
+
+
 @router.get("/{job_id}/results", summary="The result document with links to every artifact")
 def get_results(job_id: str, store: StoreDep) -> dict[str, Any]:
-    job = _finished(store, job_id)
-    result = store.get_result(job_id)
-    if result is None:  # dismissed between the two reads
-        raise JobDismissed(f"Job {job_id} was dismissed; it has no results.")
-    return results_document(job, result)
+    return finished_document(store, _job(store, job_id))
 
 
 @router.get("/{job_id}/results/{name}", summary="Download one artifact (PNG, SVG, CSV, NPZ)")

@@ -5,12 +5,15 @@ from __future__ import annotations
 from typing import Annotated, Any
 
 from fastapi import APIRouter, Header, Response
+from fastapi.responses import JSONResponse
 from pydantic import BaseModel, ConfigDict, Field
 
 from service.deps import DispatcherDep, RegistryDep, SettingsDep, StoreDep
 from service.documents import job_href, status_document
+from service.preferences import requested_wait
+from service.routes.jobs import finished_document, wait_for_job
 from worker.errors import NoSuchProcess
-from worker.submission import submit
+from worker.submission import submit, synchronous_allowed
 
 __all__ = ["router"]
 
@@ -66,11 +69,23 @@ def execute(
     idempotency_key: Annotated[
         str | None, Header(alias="Idempotency-Key", min_length=1, max_length=255)
     ] = None,
-) -> dict[str, Any]:
+    prefer: Annotated[str | None, Header(max_length=255)] = None,
+) -> Any:
+    """Queue a job.  With ``Prefer: wait=N`` and a request within the process's
+    ``sync_cost_limit``, answer ``200`` with the result document if the job finishes
+    within N seconds (``Preference-Applied: wait=N``); otherwise ``201`` as usual."""
     job, created = submit(
         store, registry, settings, process_id, body.inputs, idempotency_key, dispatcher
     )
     response.headers["Location"] = job_href(job.job_id)
     if not created:
         response.headers["Idempotent-Replayed"] = "true"
+    wait = requested_wait(prefer)
+    if wait is not None and synchronous_allowed(registry, process_id, body.inputs):
+        finished = wait_for_job(store, job.job_id, wait)
+        if finished is not None:
+            headers = {"Location": response.headers["Location"],
+                       "Preference-Applied": f"wait={wait:g}"}
+            return JSONResponse(finished_document(store, finished), status_code=200,
+                                headers=headers)
     return status_document(job)

@@ -217,3 +217,28 @@ async def test_health_and_docs(asgi_client: httpx.AsyncClient) -> None:
     assert (await asgi_client.get("/docs")).status_code == 200
     spec = (await asgi_client.get("/openapi.json")).json()
     assert "/v1/processes/{process_id}/execution" in spec["paths"]
+
+
+async def test_prefer_wait_answers_small_jobs_synchronously(
+    asgi_client: httpx.AsyncClient,
+) -> None:
+    url = "/v1/processes/planar3r-dexterity-map/execution"
+    doc = (await asgi_client.get("/v1/processes/planar3r-dexterity-map")).json()
+    assert "sync-execute" in doc["jobControlOptions"]
+    assert doc["limits"]["sync_cost_limit"] >= 21 * 21
+    r = await asgi_client.post(url, json={"inputs": SMALL_MAP}, headers={"Prefer": "wait=60"})
+    assert r.status_code == 200, r.text
+    assert r.headers["Preference-Applied"] == "wait=60"
+    job_id = r.json()["jobID"]
+    assert r.headers["Location"] == f"/v1/jobs/{job_id}"
+    assert r.json()["result"]["method"] == "exact-closed-form"
+    assert any(a["name"] == "heatmap.png" for a in r.json()["artifacts"])
+    # The same job stays retrievable like any other.
+    assert (await asgi_client.get(f"/v1/jobs/{job_id}")).json()["status"] == "successful"
+    # respond-async wins; work above the synchronous limit is queued as usual.
+    r = await asgi_client.post(url, json={"inputs": SMALL_MAP},
+                               headers={"Prefer": "respond-async, wait=60"})
+    assert r.status_code == 201
+    big = {"links": [15, 14, 8], "grid": {"points_per_axis": 401}}
+    r = await asgi_client.post(url, json={"inputs": big}, headers={"Prefer": "wait=5"})
+    assert r.status_code == 201 and "Preference-Applied" not in r.headers

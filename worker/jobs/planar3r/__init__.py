@@ -14,6 +14,7 @@ from __future__ import annotations
 from worker.contract import JobContext, JobOutcome
 from worker.jobs.planar3r.costs import (
     COST_LIMIT,
+    SYNC_COST_LIMIT,
     TIME_LIMIT_S,
     dexterity_map_cost,
     synthesis_cost,
@@ -82,6 +83,7 @@ DEXTERITY_MAP = ProcessDefinition(
     },
     cost=dexterity_map_cost,
     cost_limit=COST_LIMIT,
+    sync_cost_limit=SYNC_COST_LIMIT,
     time_limit_s=TIME_LIMIT_S,
 )
 

@@ -11,6 +11,7 @@ from worker.jobs.planar3r.specs import DexterityMapSpec, GridSpec, SynthesisSpec
 
 __all__ = [
     "COST_LIMIT",
+    "SYNC_COST_LIMIT",
     "TIME_LIMIT_S",
     "dexterity_map_cost",
     "synthesis_cost",
@@ -18,6 +19,9 @@ __all__ = [
 
 #: Largest accepted cost: a 2001 x 2001 map sampled every 0.5° (720 samples) fits.
 COST_LIMIT = 3_000_000_000
+#: Requests up to this cost may be answered synchronously (``Prefer: wait=N``): an
+#: exact map of up to 101 x 101 points.
+SYNC_COST_LIMIT = 101 * 101
 #: Wall-clock limit of one job attempt, in seconds.
 TIME_LIMIT_S = 1800.0
 
