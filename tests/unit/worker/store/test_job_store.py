@@ -4,11 +4,13 @@ listing, dismissal, migrations."""
 from __future__ import annotations
 
 import time
+from pathlib import Path
 
 import pytest
 
 from worker.contract import Artifact, JobStatus
 from worker.errors import IdempotencyConflict
+from worker.store import open_store
 from worker.store.base import JobStore, NewJob
 from worker.store.sql import decode_cursor, encode_cursor
 
@@ -232,3 +234,28 @@ def test_concurrent_claims_never_share_a_job(store: JobStore) -> None:
     for t in threads:
         t.join()
     assert sorted(claimed) == sorted(ids)
+
+
+def test_a_store_from_schema_version_1_is_migrated_forward(tmp_path: Path) -> None:
+    """An older store keeps its jobs and gains the new columns (never drop-and-recreate)."""
+    import sqlite3
+
+    from worker.store.schema import MIGRATIONS
+    from worker.store.sqlite import SqliteJobStore
+
+    path = tmp_path / "old.db"
+    conn = sqlite3.connect(path)
+    conn.execute("CREATE TABLE schema_version (version INTEGER NOT NULL)")
+    for statement in MIGRATIONS[0][1]:
+        conn.execute(statement.format(**SqliteJobStore.ddl_types))
+    conn.execute("INSERT INTO schema_version VALUES (1)")
+    conn.execute(
+        "INSERT INTO jobs (job_id, process_id, status, inputs, created, updated, max_attempts,"
+        " time_limit_s) VALUES ('old-job', 'p', 'accepted', '{}', 1, 1, 3, 60)"
+    )
+    conn.commit()
+    conn.close()
+    store = open_store(f"sqlite:///{path}")
+    assert store.schema_version() == len(MIGRATIONS)
+    assert store.get_job("old-job") is not None
+    assert store.undispatched(1.0) == ["old-job"]  # the column migration 2 added works
