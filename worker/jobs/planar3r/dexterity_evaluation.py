@@ -17,6 +17,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from worker.jobs.planar3r.specs import GridSpec, JointLimitsDeg
+from worker.jobs.workspace_grid import WorkspaceGrid
 from worker.kinematics import planar_serial
 
 __all__ = [
@@ -41,49 +42,6 @@ FULL_DEXTERITY_TOL = 1e-12
 DEFAULT_GRID_MARGIN = 1.05
 #: Row blocks of the exact map (so that progress moves on large grids).
 EXACT_ROW_BLOCKS = 10
-
-
-@dataclass(frozen=True)
-class WorkspaceGrid:
-    """A rectangular grid of ``points_per_axis``² nodes, ends included."""
-
-    bounds: tuple[float, float, float, float]
-    points_per_axis: int
-
-    @property
-    def x(self) -> FloatArray:
-        """Node x coordinates, (nx,)."""
-        return np.linspace(self.bounds[0], self.bounds[1], self.points_per_axis)
-
-    @property
-    def y(self) -> FloatArray:
-        """Node y coordinates, (ny,)."""
-        return np.linspace(self.bounds[2], self.bounds[3], self.points_per_axis)
-
-    @property
-    def step(self) -> tuple[float, float]:
-        """Node spacing (dx, dy)."""
-        n = self.points_per_axis - 1
-        return (self.bounds[1] - self.bounds[0]) / n, (self.bounds[3] - self.bounds[2]) / n
-
-    @property
-    def cell_area(self) -> float:
-        """dx * dy: the area each node stands for in grid area estimates."""
-        dx, dy = self.step
-        return dx * dy
-
-    def points(self) -> FloatArray:
-        """Node coordinates, (ny, nx, 2)."""
-        xx, yy = np.meshgrid(self.x, self.y)
-        return np.stack([xx, yy], axis=-1)
-
-    def describe(self) -> dict[str, object]:
-        """The grid as reported in a result's ``discretisation``."""
-        return {
-            "bounds": list(self.bounds),
-            "points_per_axis": self.points_per_axis,
-            "step": list(self.step),
-        }
 
 
 def workspace_grid(spec: GridSpec, links: Links) -> WorkspaceGrid:

@@ -15,7 +15,8 @@ import numpy as np
 from numpy.typing import NDArray
 
 from worker.contract import Artifact, JobContext, JobOutcome
-from worker.jobs.planar3r.data_export import dexterity_csv, npz_artifact
+from worker.jobs.data_export import npz_artifact
+from worker.jobs.planar3r.data_export import dexterity_csv
 from worker.jobs.planar3r.dexterity_evaluation import (
     FULL_DEXTERITY_TOL,
     Links,
@@ -28,7 +29,6 @@ from worker.jobs.planar3r.dexterity_evaluation import (
     workspace_grid,
 )
 from worker.jobs.planar3r.paper_errata import dexterity_map_errata_notes
-from worker.jobs.planar3r.progress import ProgressReporter
 from worker.jobs.planar3r.regions import region_2_note, region_table
 from worker.jobs.planar3r.specs import DexterityMapSpec
 from worker.jobs.planar3r.task_points import shortfall_notes, task_point_entries
@@ -37,6 +37,7 @@ from worker.jobs.planar3r.trajectories import (
     trajectory_samples,
     trajectory_summary,
 )
+from worker.jobs.progress import ProgressReporter
 from worker.kinematics import planar_serial
 from worker.plotting import planar3r as plots
 from worker.plotting.render import figure_artifacts

@@ -130,4 +130,18 @@ DEXTERITY_MAP_EXAMPLES = (
         description="th1, th2 in [-150, 150] and th3 in [-175, 175] degrees (Fig 11), "
         "orientation sampled every 1 degree; task points B..E lose full dexterity.",
     ),
+    ProcessExample(
+        title="Example 2, Case 1: the design (23, 22, 15) at its seven task points",
+        inputs=MappingProxyType(
+            {
+                "links": list(EXAMPLE_2_DESIGN),
+                "task_points": _points(EXAMPLE_2_TASK_POINTS),
+                "task_labels": list(EXAMPLE_2_LABELS),
+                "grid": {"points_per_axis": 101},
+            }
+        ),
+        description="Exact d_z on a 101 x 101 grid: every task point A..G is fully "
+        "dexterous with unlimited joints.  Small enough to answer synchronously "
+        "(Prefer: wait=N).",
+    ),
 )

@@ -18,7 +18,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from worker.contract import Artifact, JobContext, JobOutcome
-from worker.jobs.planar3r.data_export import npz_artifact
+from worker.jobs.data_export import npz_artifact
 from worker.jobs.planar3r.design_checks import (
     design_notes,
     full_dexterity_condition,
@@ -37,7 +37,6 @@ from worker.jobs.planar3r.dexterity_evaluation import (
     workspace_grid,
 )
 from worker.jobs.planar3r.paper_errata import synthesis_errata_notes
-from worker.jobs.planar3r.progress import ProgressReporter
 from worker.jobs.planar3r.specs import SynthesisSpec
 from worker.jobs.planar3r.task_points import shortfall_notes, task_point_entries
 from worker.jobs.planar3r.trajectories import (
@@ -46,6 +45,7 @@ from worker.jobs.planar3r.trajectories import (
     trajectory_samples,
     trajectory_summary,
 )
+from worker.jobs.progress import ProgressReporter
 from worker.kinematics import planar_serial
 from worker.kinematics.trajectory import DistanceRange, points_distance_range
 from worker.plotting import planar3r as plots

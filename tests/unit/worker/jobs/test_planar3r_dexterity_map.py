@@ -196,6 +196,22 @@ def test_regions_against_methods(ideal: tuple[JobOutcome, RecordingContext]) -> 
     assert region_4["d_to"] is None and region_4["d_z_max"] == 0.0
 
 
+def test_example_2_quick_look_fits_the_synchronous_limit() -> None:
+    """The third worked example: Example 2's design (23, 22, 15) on a 101 x 101 grid;
+    every task point A..G (18 <= d <= 29) lies in the band [16, 30] of full dexterity."""
+    definition = DEXTERITY_MAP
+    spec = DexterityMapSpec.model_validate(dict(DEXTERITY_MAP_EXAMPLES[2].inputs))
+    assert definition.cost(spec) <= definition.sync_cost_limit
+    outcome = definition.run(spec, RecordingContext())
+    entries = by_label(outcome)
+    assert list(entries) == list("ABCDEFG")
+    assert entries["F"]["distance"] == pytest.approx(29.0)
+    assert entries["B"]["distance"] == pytest.approx(18.0)
+    for entry in entries.values():
+        assert entry["d_z"] == pytest.approx(1.0, abs=1e-12)
+    assert outcome.result["regions"][1]["fully_dexterous_bands"] == [[16.0, 30.0]]
+
+
 def test_ideal_notes(ideal: tuple[JobOutcome, RecordingContext]) -> None:
     notes = ideal[0].notes
     assert len(notes) == 1

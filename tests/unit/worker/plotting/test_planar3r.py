@@ -351,6 +351,6 @@ def test_a_negative_region_radius_draws_no_circle() -> None:
     x, y, d_z = synthetic_map()
     fig = p.dexterity_heatmap_figure(x, y, d_z, links=(1.0, 1.0, 3.0), region_radii=(3, -1, 5),
                                      bands=(), title="t")  # fmt: skip
-    circles = [line for line in fig.axes[0].lines if len(line.get_xdata()) > 1]
+    circles = [line for line in fig.axes[0].lines if np.size(line.get_xdata()) > 1]
     assert len(circles) == 2
     fig.draw_without_rendering()
