@@ -110,6 +110,20 @@ class ProcessRegistry:
 
 def default_registry() -> ProcessRegistry:
     """Every process dexlab ships, built on demand (no import-time work)."""
+    from worker.jobs import planar2dof, spm
+    from worker.jobs.chains import CHAIN_PARALLELISM, FOURBAR_GRASHOF
     from worker.jobs.planar3r import DEXTERITY_MAP, SYNTHESIS
 
-    return ProcessRegistry((DEXTERITY_MAP, SYNTHESIS))
+    return ProcessRegistry(
+        (
+            DEXTERITY_MAP,
+            SYNTHESIS,
+            planar2dof.CONDITIONING_MAP,
+            planar2dof.OPTIMISATION,
+            CHAIN_PARALLELISM,
+            FOURBAR_GRASHOF,
+            spm.CONDITIONING_MAP,
+            spm.DESIGN_SPACE,
+            spm.OPTIMISATION,
+        )
+    )
