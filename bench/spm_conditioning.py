@@ -88,7 +88,8 @@ def compare_optimisation(samples: np.ndarray, starts: int, loop_evaluations: int
           f"{indices.rms_inverse_condition:.4f}; {converged}/{starts} converged")  # fmt: skip
     each = fast / result.evaluations * 1e3
     print(f"  vectorised: {fast:7.2f} s for {result.evaluations:,} objective evaluations "
-          f"({each:.2f} ms each, solver and twins included)")  # fmt: skip
+          f"({result.screen_evaluations:,} of them screening the starts; {each:.2f} ms each, "
+          "solver and twins included)")  # fmt: skip
     print(f"  loop-driven: {loop:7.1f} s  (loop timed on {loop_evaluations} evaluations, "
           f"{per_evaluation * 1e3:.1f} ms each, scaled by {result.evaluations:,})")  # fmt: skip
     print(f"  speed-up: {loop / fast:,.0f}x (target: the vectorised run in a few seconds)")

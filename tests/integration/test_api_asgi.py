@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import asyncio
+import json
 import time
 from typing import Any
 
@@ -242,3 +243,45 @@ async def test_prefer_wait_answers_small_jobs_synchronously(
     big = {"links": [15, 14, 8], "grid": {"points_per_axis": 401}}
     r = await asgi_client.post(url, json={"inputs": big}, headers={"Prefer": "wait=5"})
     assert r.status_code == 201 and "Preference-Applied" not in r.headers
+
+
+async def test_invalid_chains_are_422_naming_the_loop_or_link(
+    asgi_client: httpx.AsyncClient,
+) -> None:
+    """Open loops, unknown links, chains of different mobility and four-bars that cannot
+    close are refused with a problem document naming the loop or link, and nothing runs."""
+    doc = (await asgi_client.get("/v1/processes/chain-parallelism")).json()
+    fig4 = doc["examples"][2]["inputs"]  # Fig 4a against Fig 4b
+
+    def broken(edit: Any) -> dict[str, Any]:
+        inputs = json.loads(json.dumps(fig4))
+        edit(inputs["chains"])
+        return inputs
+
+    def open_loop(chains: list[Any]) -> None:
+        chains[0]["loops"][1] = ["1.b", "4.b", "5", "6"]  # link 7 left out: no closure
+
+    def unknown_link(chains: list[Any]) -> None:
+        chains[1]["loops"][2][5] = "9"
+
+    def other_mobility(chains: list[Any]) -> None:
+        chains.append({"name": "quad", "lengths": [18, 15, 10, 17]})
+
+    cases = [
+        ("chain-parallelism", broken(open_loop), "inputs.chains[0].loops[1]", "does not close"),
+        ("chain-parallelism", broken(unknown_link), "inputs.chains[1].loops[2]", "'9'"),
+        ("chain-parallelism", broken(other_mobility), "inputs.chains", "degrees of freedom"),
+        ("fourbar-grashof", {"lengths": [1, 1, 1, 10], "ground": 0}, "inputs.lengths",
+         "close"),
+    ]
+    for process_id, inputs, field, words in cases:
+        r = await asgi_client.post(f"/v1/processes/{process_id}/execution",
+                                   json={"inputs": inputs}, headers={"Prefer": "wait=10"})
+        assert r.status_code == 422, (field, r.text)
+        assert r.headers["content-type"] == PROBLEM
+        body = r.json()
+        assert body["type"].endswith("/invalid-inputs")
+        matching = [e for e in body["errors"] if e["field"].startswith(field)]
+        assert matching, (field, body["errors"])
+        assert any(words in e["message"] for e in matching), (words, matching)
+    assert (await asgi_client.get("/v1/jobs")).json()["jobs"] == []

@@ -3,6 +3,7 @@ their plots downloadable, and quick processes answer synchronously."""
 
 from __future__ import annotations
 
+import time
 from collections.abc import Iterator
 from typing import Any
 
@@ -80,3 +81,36 @@ def test_quick_processes_answer_synchronously(embedded: Deployment, process_id: 
     body = r.json()
     assert body["processID"] == process_id and body["result"]
     assert wait_terminal(client, body["jobID"])["status"] == "successful"
+
+
+def test_progress_advances_during_an_spm_optimisation(embedded: Deployment) -> None:
+    """Poll a running optimisation: its progress rises through intermediate values (one
+    step per finished start) before the job succeeds."""
+    client = embedded.client
+    inputs = {
+        "workspace": {"tilt_max_deg": 60.0, "torsion_deg": [0.0, 360.0],
+                      "samples": {"azimuth": 8, "tilt": 24, "torsion": 6}},
+        "gamma_deg": 0.0,
+        "starts": 32,
+        "seed": 7,
+        "plots": False,
+    }  # fmt: skip
+    r = client.post("/v1/processes/spm-optimisation/execution", json={"inputs": inputs})
+    assert r.status_code == 201, r.text
+    job_id = r.json()["jobID"]
+    seen: list[float] = []
+    deadline = time.monotonic() + 300
+    status: dict[str, Any] = {}
+    while time.monotonic() < deadline:
+        status = client.get(f"/v1/jobs/{job_id}").json()
+        if status["status"] == "running":
+            seen.append(status["progress"])
+        if status["status"] in {"successful", "failed", "dismissed"}:
+            break
+        time.sleep(0.05)
+    assert status["status"] == "successful", status
+    assert seen == sorted(seen), seen
+    intermediate = {p for p in seen if 0.0 < p < 100.0}
+    assert len(intermediate) >= 3, seen
+    result = client.get(f"/v1/jobs/{job_id}/results").json()["result"]
+    assert len(result["starts"]) == 32

@@ -22,7 +22,7 @@ from scipy.ndimage import minimum_filter
 
 from worker.kinematics.spherical_model import FloatArray, Workspace
 
-__all__ = ["least_angle", "platform_axis"]
+__all__ = ["least_angle", "platform_axis", "search_grid_counts"]
 
 _POLISHED = 6  # at most this many grid minima polished per bound...
 _MARGIN = 0.1  # ...of those within this chord^2 of the least grid value
@@ -178,12 +178,20 @@ def _polish_cartesian(x: list[float], ws: Workspace, beta: float, t: FloatArray)
     return value
 
 
-def _search_grid(ws: Workspace) -> FloatArray:
-    """(n1, n2, n3, 3) grid over (f1, psi2, psi3): 10° in f1, T/8 in psi2, <= 15° in psi3."""
+def search_grid_counts(ws: Workspace) -> tuple[int, int, int]:
+    """(n1, n2, n3) of the search grid of :func:`least_angle` over (f1, psi2, psi3): 10° in
+    f1, T/8 in psi2, at most 15° (and at least 5 values) over a torsion range."""
     lo, hi = ws.torsion
     torsion = 1 if hi == lo else max(5, math.ceil((hi - lo) / math.radians(15.0)) + 1)
-    axes = (np.linspace(0.0, 2.0 * np.pi, 36, endpoint=False),
-            np.linspace(0.0, ws.tilt_max, 9), np.linspace(lo, hi, torsion))  # fmt: skip
+    return 36, 9, torsion
+
+
+def _search_grid(ws: Workspace) -> FloatArray:
+    """(n1, n2, n3, 3) grid over (f1, psi2, psi3) with :func:`search_grid_counts`."""
+    lo, hi = ws.torsion
+    n1, n2, n3 = search_grid_counts(ws)
+    axes = (np.linspace(0.0, 2.0 * np.pi, n1, endpoint=False),
+            np.linspace(0.0, ws.tilt_max, n2), np.linspace(lo, hi, n3))  # fmt: skip
     return np.stack(np.meshgrid(*axes, indexing="ij"), axis=-1)
 
 

@@ -137,7 +137,7 @@ class SampleSet:
         ak, ah = wh * vz - wz * vh, wz * vk - wk * vz
         a = np.stack([ak * _COS_ETA - ah * _SIN_ETA, ak * _SIN_ETA + ah * _COS_ETA,
                       wk * vh - wh * vk])  # fmt: skip
-        inverse, det_a = _inverse_condition_legs_first(a, -branch * root)
+        inverse, det_a = _inverse_condition_legs_first(a, branch * root)
         real = real_legs.all(axis=0)
         theta = np.where(real_legs, np.arctan2(sin_th, cos_th), np.nan).T
         if real.all():

@@ -12,8 +12,8 @@ sin(th_i) e2_i)`` with ``e2_i = u_i x e1_i`` — the expansion of eq 5 — so th
 ``A_i = P_i - Qc_i``, ``B_i = R_i``, ``C_i = P_i + Qc_i``; it is solved here in the
 equivalent closed form ``th_i = atan2(R_i, Qc_i) - branch * acos(-P_i / rho_i)``,
 ``rho_i = hypot(Qc_i, R_i)``, real iff ``B_i^2 - A_i C_i = rho_i^2 - P_i^2 >= 0`` (eq 12).
-On that root ``(u_i x w_i) . v_i = -branch * sqrt(rho_i^2 - P_i^2)``, so ``branch`` is the
-sign the paper constrains in eq 29 (-1 there).
+On that root ``(u_i x w_i) . v_i = d(w_i . v_i)/d(th_i) = branch * sqrt(rho_i^2 - P_i^2)``,
+so ``branch`` is the sign the paper constrains in eq 29 (-1 there).
 """
 
 from __future__ import annotations
@@ -138,7 +138,7 @@ def solve_legs(design: SpmDesign, frames: LegFrames, v: FloatArray, branch: int)
     cos_delta = np.divide(-p, rho, out=np.zeros_like(p), where=rho > 0.0)
     delta = np.arccos(np.clip(cos_delta, -1.0, 1.0))
     theta = np.mod(np.arctan2(r, qc) - branch * delta + np.pi, 2.0 * np.pi) - np.pi
-    b = -branch * np.sqrt(np.maximum(rho * rho - p * p, 0.0))
+    b = branch * np.sqrt(np.maximum(rho * rho - p * p, 0.0))
     return LegSolution(np.where(real, theta, np.nan), real, np.where(real, b, np.nan))
 
 

@@ -18,7 +18,12 @@ import numpy as np
 from worker.kinematics.spherical_design import EDGE_TOLERANCE, design_widths, link_angles
 from worker.kinematics.spherical_model import FloatArray, SpmDesign, Workspace
 
-__all__ = ["Parametrisation"]
+__all__ = ["EDGE_SHARE", "Parametrisation"]
+
+#: Share of screening candidates put on a bound of each link-angle variable (an edge of
+#: the design space): a third, half of it on each side.
+EDGE_SHARE = 1.0 / 3.0
+_LINK_VARIABLES = ("s", "t", "u")
 
 
 class Parametrisation:
@@ -80,11 +85,18 @@ class Parametrisation:
             return None, max(-a1, a1 - math.pi, -a2, a2 - math.pi, 0.0) + EDGE_TOLERANCE
         return SpmDesign(a1, a2, beta, gamma), 0.0
 
-    def random_start(self, rng: np.random.Generator) -> FloatArray:
-        """Uniform in the variable box; up to 50 redraws until a design decodes."""
-        x = rng.uniform(self.lower, self.upper)
-        for _ in range(50):
-            if self.decode(x)[0] is not None:
-                break
-            x = rng.uniform(self.lower, self.upper)
-        return np.asarray(x, dtype=np.float64)
+    def candidates(self, rng: np.random.Generator, count: int) -> FloatArray:
+        """``count`` solver-variable vectors (count, len(names)) for screening starts.
+
+        Uniform in the variable box, except that each link-angle variable (s, t or u) is
+        put on one of its two bounds with probability :data:`EDGE_SHARE`: those bounds are
+        the edges of the design space (eq 19), where the optima of Tables 1 and 2 sit
+        (METHODS.md §3) and which uniform draws never reach.
+        """
+        x = rng.uniform(self.lower, self.upper, size=(count, len(self.names)))
+        for column, name in enumerate(self.names):
+            if name in _LINK_VARIABLES:
+                on_edge = rng.random(count) < EDGE_SHARE
+                bound = np.where(rng.random(count) < 0.5, self.lower[column], self.upper[column])
+                x[:, column] = np.where(on_edge, bound, x[:, column])
+        return x

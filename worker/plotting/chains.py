@@ -20,9 +20,13 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 
 import numpy as np
+from matplotlib import colormaps
+from matplotlib.artist import Artist
 from matplotlib.axes import Axes
+from matplotlib.colors import Normalize
 from matplotlib.figure import Figure
-from matplotlib.patches import Polygon
+from matplotlib.lines import Line2D
+from matplotlib.patches import Patch, Polygon
 from matplotlib.path import Path
 from numpy.typing import NDArray
 
@@ -54,6 +58,8 @@ _OTHER_COLOUR = "#9db7cf"
 _POLYGON_MARKERS = {3: "^", 4: "s", 5: "p", 6: "h"}
 _ROLE_COLOURS = {"ground": "0.25", "input": "#4c78a8", "coupler": "#f58518", "output": "#54a24b"}
 _MAX_COLUMNS = 3
+#: Colour scale of the full-turn table (1: turns fully, 0: rocks) on the "Blues" map.
+_TURNS_VMIN, _TURNS_VMAX = -0.35, 1.25
 
 
 @dataclass(frozen=True)
@@ -209,6 +215,43 @@ def _draw_loop(
     )
 
 
+def _degrees(graph: ChainGraph) -> dict[str, int]:
+    """Each link -> its number of joints (3 for a ternary link)."""
+    degree = {link: 0 for link in graph.links}
+    for a, b in graph.joints:
+        degree[a] += 1
+        degree[b] += 1
+    return degree
+
+
+_POLYGON_NAMES = {3: "ternary", 4: "quaternary", 5: "pentagonal", 6: "hexagonal"}
+
+
+def _graph_legend(
+    fig: Figure, graphs: Sequence[ChainGraph], length_unit: str, columns: int
+) -> None:
+    """One legend under the panels: the vertex kinds drawn, joints, loops, side lengths."""
+    sizes = sorted({_degrees(g)[link] for g in graphs for link in g.links if link in g.polygonal})
+    handles: list[Artist] = [
+        Line2D([], [], ls="none", marker="o", ms=11, mfc="white", mec=_EDGE_COLOUR,
+               label="binary link"),
+    ]  # fmt: skip
+    for size in sizes:
+        name = _POLYGON_NAMES.get(size, f"{size}-joint")
+        handles.append(
+            Line2D([], [], ls="none", marker=_POLYGON_MARKERS.get(size, "o"), ms=12,
+                   mfc="#d9d9d9", mec=_EDGE_COLOUR, label=f"{name} link")
+        )  # fmt: skip
+    handles += [
+        Line2D([], [], color=_EDGE_COLOUR, lw=1.8, label="joint"),
+        Patch(facecolor=_LOOP_COLOURS[0], alpha=0.3, label="loop (numbered)"),
+        Line2D([], [], ls="none", marker="$9$", ms=8, color=_PERIPHERAL_COLOUR,
+               label=f"side length used by a loop [{plain_text(length_unit)}]"),
+    ]  # fmt: skip
+    fig.legend(handles=handles, loc="outside lower center", ncols=min(len(handles), 3 * columns),
+               fontsize=9, frameon=False, columnspacing=1.4)  # fmt: skip
+
+
 def _draw_graph(ax: Axes, graph: ChainGraph) -> None:
     xy = {link: np.array(p) for link, p in graph_layout(graph).items()}
     centre = np.mean(list(xy.values()), axis=0)
@@ -217,10 +260,7 @@ def _draw_graph(ax: Axes, graph: ChainGraph) -> None:
     for a, b in graph.joints:
         (x0, y0), (x1, y1) = xy[a], xy[b]
         ax.plot([x0, x1], [y0, y1], color=_EDGE_COLOUR, lw=1.8, zorder=2, solid_capstyle="round")
-    degree = {link: 0 for link in graph.links}
-    for a, b in graph.joints:
-        degree[a] += 1
-        degree[b] += 1
+    degree = _degrees(graph)
     for link in graph.links:
         x, y = xy[link]
         if link in graph.polygonal:
@@ -287,14 +327,7 @@ def chain_graphs_figure(
     for index, graph in enumerate(graphs):
         _draw_graph(fig.add_subplot(rows, columns, index + 1), graph)
     fig.suptitle(plain_text(title), fontsize=13, fontweight="bold")
-    fig.supxlabel(
-        f"vertices: links (○ binary, ▲ ternary, ■ quaternary); edges: joints; "
-        f"numbers in a loop: the lengths of the sides it uses [{plain_text(length_unit)}]",
-        ha="center",
-        va="bottom",
-        fontsize=8.5,
-        color="0.3",
-    )
+    _graph_legend(fig, graphs, length_unit, columns)
     return fig
 
 
@@ -307,7 +340,7 @@ def _ranks(values: FloatArray, descending: bool) -> list[int]:
 
 
 def _bar_panel(
-    ax: Axes, names: Sequence[str], values: FloatArray, descending: bool, label: str
+    ax: Axes, names: Sequence[str], values: FloatArray, descending: bool, label: str, axis: str
 ) -> None:
     ranks = _ranks(values, descending)
     y = np.arange(len(names))
@@ -331,6 +364,7 @@ def _bar_panel(
     ax.ticklabel_format(axis="x", style="sci", scilimits=(-3, 4))
     ax.grid(axis="x", color="0.9", zorder=0)
     ax.set_title(label, fontsize=11)
+    ax.set_xlabel(axis, fontsize=10)
 
 
 def parallelism_bars_figure(
@@ -340,12 +374,14 @@ def parallelism_bars_figure(
     q: Sequence[float],
     q_normalized: bool = False,
     title: str,
+    length_unit: str = "units",
 ) -> Figure:
     """Normalised P (larger: more uniform rigidity) beside Q (smaller: more parallel).
 
     Each bar is labelled with its value and rank (#1 best, ties share a rank); the best
     chain(s) of each measure are drawn dark.  ``q_normalized``: ``q`` holds Q
-    of the normalised lengths (chains of different total length).
+    of the normalised lengths (chains of different total length), which has no unit;
+    otherwise Q is in ``length_unit`` to the fourth power.
     """
     where = "parallelism_bars_figure"
     p_arr = np.asarray(p_normalized, dtype=float)
@@ -359,12 +395,28 @@ def parallelism_bars_figure(
         )
     if not (np.all(np.isfinite(p_arr)) and np.all(np.isfinite(q_arr))):
         raise _bad("q", where, "finite values", q)
-    fig = Figure(figsize=(10.0, 1.2 + 0.55 * len(names)), layout="constrained")
+    fig = Figure(figsize=(10.0, 2.0 + 0.55 * len(names)), layout="constrained")
     left, right = fig.add_subplot(1, 2, 1), fig.add_subplot(1, 2, 2)
-    _bar_panel(left, names, p_arr, True, "normalised P  (larger: more uniform rigidity)")
+    _bar_panel(
+        left, names, p_arr, True, "normalised P  (larger: more uniform rigidity)",
+        "P of l / sum(l), eq 1 (no unit)",
+    )  # fmt: skip
     q_label = "Q of normalised lengths" if q_normalized else "Q"
-    _bar_panel(right, names, q_arr, False, f"{q_label}  (smaller: more parallel)")
+    q_axis = (
+        "Q of l / sum(l), eq 3 (no unit)"
+        if q_normalized
+        else f"Q, eq 3 [{plain_text(length_unit)}⁴]"
+    )
+    _bar_panel(right, names, q_arr, False, f"{q_label}  (smaller: more parallel)", q_axis)
     right.set_yticklabels([])
+    left.set_ylabel("chain", fontsize=10)
+    fig.legend(
+        handles=[
+            Patch(color=_BEST_COLOUR, label="best of the measure (rank #1; ties share a rank)"),
+            Patch(color=_OTHER_COLOUR, label="other chains (value and rank #k on the bar)"),
+        ],
+        loc="outside lower center", ncols=2, fontsize=9, frameon=False,
+    )  # fmt: skip
     fig.suptitle(plain_text(title), fontsize=13, fontweight="bold")
     return fig
 
@@ -385,6 +437,7 @@ def _motion_panel(
             lw=2.6,
             alpha=0.55,
             zorder=1,
+            label="path of the input-coupler joint" if branch == 0 else None,
         )
         ax.plot(
             poses[branch, :, joint, 0],
@@ -394,13 +447,21 @@ def _motion_panel(
             lw=2.6,
             alpha=0.55,
             zorder=1,
+            label=f"path of the coupler-output joint, assembly branch {branch + 1}",
         )
     feasible = np.flatnonzero(ok[0])
-    for k in feasible[:: max(1, feasible.size // 10)]:
+    for n, k in enumerate(feasible[:: max(1, feasible.size // 10)]):
         pose = poses[0, k]
         for role in ("input", "coupler", "output"):
             a, b = pose[link_of[role]], pose[(link_of[role] + 1) % 4]
-            ax.plot([a[0], b[0]], [a[1], b[1]], color=_ROLE_COLOURS[role], lw=1.0, alpha=0.22)
+            ax.plot(
+                [a[0], b[0]],
+                [a[1], b[1]],
+                color=_ROLE_COLOURS[role],
+                lw=1.0,
+                alpha=0.22,
+                label="poses along branch 1" if n == 0 and role == "coupler" else None,
+            )
     if feasible.size:
         angles = np.linspace(0.0, 2.0 * np.pi, poses.shape[1])
         shown = feasible[np.argmin(np.abs(np.angle(np.exp(1j * (angles[feasible] - 1.1)))))]
@@ -436,17 +497,19 @@ def _motion_panel(
         else np.array([[0.0, 0.0], [lengths[ground], 0.0]])
     )
     ax.scatter(
-        pivots[:, 0], pivots[:, 1] - 0.04 * max(lengths), marker="^", s=120, color="0.25", zorder=4
+        pivots[:, 0],
+        pivots[:, 1] - 0.04 * max(lengths),
+        marker="^",
+        s=120,
+        color="0.25",
+        zorder=4,
+        label="ground pivots",
     )
     ax.set_aspect("equal")
     ax.grid(color="0.92")
     ax.set_xlabel(f"x [{plain_text(unit)}]")
     ax.set_ylabel(f"y [{plain_text(unit)}]")
-    ax.set_title(
-        "range of motion, ground fixed (thick: paths of the moving joints;\n"
-        "solid / dashed: the two assembly branches)",
-        fontsize=9.5,
-    )
+    ax.set_title("range of motion with the ground fixed (one pose drawn bold)", fontsize=9.5)
 
 
 def _turns_panel(
@@ -455,7 +518,7 @@ def _turns_panel(
     """A 4 x 4 table: which links turn fully relative to which."""
     colours = np.where(full_turns, 1.0, 0.0)
     np.fill_diagonal(colours, np.nan)
-    ax.imshow(colours, cmap="Blues", vmin=-0.35, vmax=1.25)
+    ax.imshow(colours, cmap="Blues", vmin=_TURNS_VMIN, vmax=_TURNS_VMAX)
     labels = [f"{k}: {roles[k]}\n{lengths[k]:g}" for k in range(4)]
     ax.set_xticks(range(4), labels, fontsize=8.5)
     ax.set_yticks(range(4), labels, fontsize=8.5)
@@ -472,6 +535,8 @@ def _turns_panel(
                 color="white" if full_turns[i, j] else "0.3",
             )
     ax.set_title("does link (column) turn fully\nrelative to link (row)?", fontsize=9.5)
+    ax.set_xlabel("link that moves")
+    ax.set_ylabel("link held fixed")
     ax.tick_params(length=0)
 
 
@@ -495,9 +560,19 @@ def fourbar_figure(
     turns = np.asarray(full_turns, dtype=bool)
     if turns.shape != (4, 4):
         raise _bad("full_turns", where, "a (4, 4) boolean array", turns.shape)
-    fig = Figure(figsize=(11.0, 5.4), layout="constrained")
+    fig = Figure(figsize=(11.0, 6.2), layout="constrained")
     grid = fig.add_gridspec(1, 2, width_ratios=(1.75, 1.0))
-    _motion_panel(fig.add_subplot(grid[0, 0]), arr, lengths, roles, length_unit)
+    motion = fig.add_subplot(grid[0, 0])
+    _motion_panel(motion, arr, lengths, roles, length_unit)
     _turns_panel(fig.add_subplot(grid[0, 1]), turns, lengths, roles)
+    shade = colormaps["Blues"]
+    scale = Normalize(vmin=_TURNS_VMIN, vmax=_TURNS_VMAX)
+    handles, _ = motion.get_legend_handles_labels()
+    handles += [
+        Patch(color=shade(scale(1.0)), label="turns fully"),
+        Patch(color=shade(scale(0.0)), label="rocks (cannot turn fully)"),
+    ]
+    fig.legend(handles=handles, loc="outside lower center", ncols=3, fontsize=8.5,
+               frameon=False)  # fmt: skip
     fig.suptitle(plain_text(title), fontsize=12.5, fontweight="bold")
     return fig

@@ -61,8 +61,9 @@ CHAIN_PARALLELISM = ProcessDefinition(
         "and bar-chart plots. A chain is {'name', 'lengths'} (one loop of binary links) or "
         "{'name', 'links', 'loops'} (polygonal links by side; inner loops, peripheral last). "
         f"Cost: links x loops per chain, plus (n-1)!/2 arrangements for a single loop of n "
-        f"<= {MAX_SINGLE_LOOP_LINKS} links; at most {CHAIN_COST_LIMIT:,} ({MAX_CHAINS} chains), "
-        f"answered synchronously up to {CHAIN_SYNC_COST_LIMIT:,}."
+        f"<= {MAX_SINGLE_LOOP_LINKS} links; at most {CHAIN_COST_LIMIT:,} ({MAX_CHAINS} chains). "
+        f"Requests costing up to {CHAIN_SYNC_COST_LIMIT:,} sent with 'Prefer: wait=N' are "
+        "answered synchronously (200 with the results) when they finish within N seconds."
     ),
     inputs_model=ChainParallelismSpec,
     run=_run_chain_parallelism,
@@ -97,7 +98,8 @@ FOURBAR_GRASHOF = ProcessDefinition(
         "(crank-rocker, double-crank, double-rocker, triple-rocker, change-point) and "
         "Barker's finer class (I-1 GCCC ... III-6 S3X); and which links turn fully relative "
         "to which, from loop closure: links i and j do iff L_i + L_j <= L_y + L_z and "
-        "|L_i - L_j| >= |L_y - L_z| for the other two. Cost 1; always answered synchronously."
+        "|L_i - L_j| >= |L_y - L_z| for the other two. Cost 1, always within the synchronous "
+        "limit: with 'Prefer: wait=N' the response is 200 with the results."
     ),
     inputs_model=FourBarGrashofSpec,
     run=_run_fourbar_grashof,

@@ -247,6 +247,7 @@ def _artifacts(
         q=[entry[q_key] for entry in entries],
         q_normalized=q_key == "Q_normalized",
         title="Uniform rigidity (P) and parallelism (Q)",
+        length_unit=spec.length_unit,
     )
     return (
         *figure_artifacts(graphs, "chain_graphs", "Link graphs of the chains, loops marked"),

@@ -11,6 +11,7 @@ path, e.g. ``chains[1].loops[2]: link '9' is not defined``.
 
 from __future__ import annotations
 
+import math
 from typing import Annotated, Any
 
 from pydantic import (
@@ -27,6 +28,7 @@ from pydantic import (
 from pydantic_core import InitErrorDetails, PydanticCustomError
 
 from worker.kinematics import chains
+from worker.kinematics.fourbar import CHANGE_POINT_RTOL
 
 __all__ = [
     "MAX_CHAINS",
@@ -313,7 +315,8 @@ class FourBarGrashofSpec(_Spec):
         Field(
             ...,
             description="The four link lengths in order round the loop; link i is joined to "
-            "links i-1 and i+1 (mod 4).",
+            "links i-1 and i+1 (mod 4). Each must be shorter than the sum of the other three, "
+            "or the loop cannot be assembled (or only lies flat and cannot move).",
         )
     )
     ground: int = Field(
@@ -326,3 +329,20 @@ class FourBarGrashofSpec(_Spec):
     )
     length_unit: str = _unit_field()
     plots: bool = _plots_field()
+
+    @model_validator(mode="after")
+    def _loop_closes(self) -> FourBarGrashofSpec:
+        """Like a chain's loop, a four-bar closes only if its longest link is shorter than
+        the sum of the other three (within :data:`CHANGE_POINT_RTOL` of the total)."""
+        longest = max(range(4), key=self.lengths.__getitem__)
+        rest = math.fsum(v for k, v in enumerate(self.lengths) if k != longest)
+        if self.lengths[longest] >= rest - CHANGE_POINT_RTOL * math.fsum(self.lengths):
+            message = (
+                f"lengths[{longest}]: the loop cannot close: link {longest} "
+                f"({self.lengths[longest]:g}) is not shorter than the sum of the other three "
+                f"({rest:g})"
+            )
+            raise ValidationError.from_exception_data(
+                type(self).__name__, [_error(("lengths", longest), message, self.lengths)]
+            )
+        return self

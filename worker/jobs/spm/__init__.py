@@ -36,7 +36,7 @@ from worker.jobs.spm.examples import (
     DESIGN_SPACE_EXAMPLES,
     OPTIMISATION_EXAMPLES,
 )
-from worker.jobs.spm.optimisation_spec import OptimisationSpec
+from worker.jobs.spm.optimisation_spec import SCREEN_PER_START, OptimisationSpec
 from worker.jobs.spm.specs import ConditioningMapSpec, DesignSpaceSpec
 from worker.processes import ProcessDefinition
 
@@ -171,6 +171,7 @@ OPTIMISATION = ProcessDefinition(
         "Maximises mean(1/kappa^2) over the workspace samples (eq 28) by nonlinear least "
         "squares from several seeded starts in the design space, over the free parameters "
         "(alpha1, alpha2, beta, optionally gamma; identical_platforms ties gamma to beta), "
+        "each start the best of a seeded screen of the design space, "
         "feasible on the continuous workspace by construction (eq 19: infeasible designs "
         "are never scored), on one branch (eq 29), optionally with det(A)^2 >= lambda "
         "(eq 30). Reports the optimum with its indices and its twin optima, every start "
@@ -178,7 +179,8 @@ OPTIMISATION = ProcessDefinition(
         "paper's examples its designs scored on the same samples (notes say where the "
         "optimum beats them). " + _SAMPLING + " "
         + _limits(OPTIMISATION_COST_LIMIT, OPTIMISATION_TIME_LIMIT_S, 0,
-                  "starts x max_evaluations_per_start x (1 + free variables) x (samples + "
+                  "starts x (max_evaluations_per_start x (1 + free variables) + "
+                  f"{SCREEN_PER_START} screened candidates) x (samples + "
                   f"{DESIGN_OVERHEAD}, + {LIMITED_WIDTH_COST:,} when a limited torsion range "
                   "meets a free beta or gamma) + the figures")
     ),
@@ -196,7 +198,9 @@ OPTIMISATION = ProcessDefinition(
         "message, nfev, evaluations, feasible, mean_square_inverse_condition, the end "
         "design's indices (null unless feasible), best.",
         "evaluations": "Residual evaluations spent over all starts (finite differences "
-        "included).",
+        "included) and the screening of the starts.",
+        "screening": "How the starts were seeded from the design space: candidates per start, "
+        "candidates, designs scored, rule.",
         "budget": "starts and max_evaluations_per_start.",
         "free": "The free parameters.",
         "held_deg": "The held parameters (deg).",

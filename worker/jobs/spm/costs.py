@@ -11,14 +11,18 @@ orientation (about 2 µs vectorised). Fixed work is priced in the same unit, by 
 
 conditioning map: samples + given orientations + map and sweep points + the minimum.
 design space: betas x width + (index map) points² x (samples + overhead).
-optimisation: starts x evaluation budget x (1 + free variables) x (samples + overhead,
-+ a width search per evaluation when a limited torsion range meets a free beta or
-gamma), + the figures' index map, the twins and the minimum.
+optimisation: starts x (evaluation budget x (1 + free variables) + the screened
+candidates) x (samples + overhead, + a width search per evaluation when a limited torsion
+range meets a free beta or gamma), + the figures' index map, the twins and the minimum.
 """
 
 from __future__ import annotations
 
-from worker.jobs.spm.optimisation_spec import INDEX_MAP_POINTS, OptimisationSpec
+from worker.jobs.spm.optimisation_spec import (
+    INDEX_MAP_POINTS,
+    SCREEN_PER_START,
+    OptimisationSpec,
+)
 from worker.jobs.spm.specs import SWEEP_POINTS, ConditioningMapSpec, DesignSpaceSpec
 from worker.jobs.spm.workspace_spec import WorkspaceSpec
 
@@ -91,11 +95,13 @@ def design_space_cost(spec: DesignSpaceSpec) -> int:
 
 
 def optimisation_cost(spec: OptimisationSpec) -> int:
-    """starts x budget x (1 + variables) x per-evaluation work, + the figures' fixed work."""
+    """starts x (budget x (1 + variables) + screen) x per-evaluation work, + the figures'
+    fixed work."""
     samples = spec.workspace.samples.count
     per_evaluation = samples + DESIGN_OVERHEAD
     if not spec.workspace.full_turn and {"beta", "gamma"} & set(spec.free):
         per_evaluation += LIMITED_WIDTH_COST
-    evaluations = spec.starts * spec.max_evaluations_per_start * (1 + spec.solver_variables)
+    per_start = spec.max_evaluations_per_start * (1 + spec.solver_variables) + SCREEN_PER_START
+    evaluations = spec.starts * per_start
     figures = INDEX_MAP_POINTS**2 * (samples + DESIGN_OVERHEAD) if spec.plots else 0
     return evaluations * per_evaluation + figures + 4 * samples + WORKSPACE_MINIMUM_COST

@@ -32,6 +32,7 @@ from worker.jobs.spm.workspace_sampling import (
     workspace_samples,
 )
 from worker.kinematics import spherical_parallel as sp
+from worker.kinematics.spherical_axis_reach import search_grid_counts
 from worker.plotting import spm_design as plots
 from worker.plotting.render import figure_artifacts
 
@@ -129,9 +130,11 @@ def _method(spec: DesignSpaceSpec) -> str:
     if spec.workspace.full_turn:
         return ("closed form on the continuous workspace: with a full torsion turn v_i sweeps "
                 "the band of polar angles [beta - T, beta + T] completely")  # fmt: skip
-    return ("least angle between v_1 and -/+ n_1 over the continuous workspace: the local "
-            "minima of a 36 x 9 x 9 grid over (psi1, psi2, psi3), polished by projected "
-            "Newton steps")  # fmt: skip
+    n1, n2, n3 = search_grid_counts(kinematic_workspace(spec.workspace))
+    return (f"least angle between v_1 and -/+ n_1 over the continuous workspace: the local "
+            f"minima of a {n1} x {n2} x {n3} grid over (psi1, psi2, psi3) (psi1 every 10°, "
+            "psi2 every T/8, psi3 at most every 15°, ends included), polished by projected "
+            "Newton and Gauss-Newton steps")  # fmt: skip
 
 
 def _summary(rows: list[dict[str, Any]]) -> dict[str, Any]:

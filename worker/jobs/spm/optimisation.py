@@ -21,7 +21,7 @@ from worker.jobs.spm.optimisation_artifacts import (
     NPZ_NAME,
     optimisation_artifacts,
 )
-from worker.jobs.spm.optimisation_spec import OptimisationSpec
+from worker.jobs.spm.optimisation_spec import SCREEN_PER_START, OptimisationSpec
 from worker.jobs.spm.optimum import optimum_entry, presented_optimum
 from worker.jobs.spm.paper_errata import (
     example_number,
@@ -42,7 +42,14 @@ __all__ = ["run_optimisation", "solve"]
 _SOLVER = (
     "scipy.optimize.least_squares (dogbox) on residuals sqrt(1 - 1/kappa_k^2), whose sum of "
     "squares is n (1 - mean(1/kappa^2)); link angles parametrised over the rectangle of eq 19 "
-    "(a1 - a2 = s D1, a1 + a2 - 180 = t D2, s, t in [-1, 1]; u in [0, 1] with one held)"
+    "(a1 - a2 = s D1, a1 + a2 - 180 = t D2, s, t in [-1, 1]; u in [0, 1] with one held); "
+    "each start is the best of a seeded screen of the design space (see 'screening')"
+)
+_SCREEN_RULE = (
+    "candidates drawn uniformly in the solver's variable box, each link-angle variable put "
+    "on a bound (an edge of the design space, eq 19) with probability 1/3; ranked by eq 30 "
+    "(if asked), then mean(1/kappa^2); the starts are the best candidates that differ by "
+    "more than 10% of the box along some variable"
 )
 
 
@@ -55,14 +62,14 @@ def solve(spec: OptimisationSpec, samples: FloatArray, progress: ProgressReporte
               if (pair := getattr(spec.bounds, f"{name}_deg")) is not None}  # fmt: skip
 
     def on_start(done: int, total: int) -> None:
-        progress.report(3.0 + 72.0 * done / total, f"optimisation: {done} of {total} starts done")
+        progress.report(5.0 + 70.0 * done / total, f"optimisation: {done} of {total} starts done")
 
     return sp.optimise(
         ws, samples, free=spec.free, identical_platforms=spec.identical_platforms,
         bounds=bounds or None, starts=spec.starts, seed=spec.seed,
         singularity_tolerance=spec.singularity_tolerance, branch=spec.branch,
         fixed={name: math.radians(v) for name, v in spec.held.items()}, on_start=on_start,
-        max_nfev=spec.max_evaluations_per_start,
+        max_nfev=spec.max_evaluations_per_start, screen=SCREEN_PER_START,
     )  # fmt: skip
 
 
@@ -72,7 +79,8 @@ def run_optimisation(spec: OptimisationSpec, ctx: JobContext) -> JobOutcome:
     progress.report(0.0, "workspace samples")
     ws = kinematic_workspace(spec.workspace)
     samples, layout = workspace_samples(spec.workspace)
-    progress.report(3.0, f"optimisation: 0 of {spec.starts} starts done")
+    progress.report(2.0, f"screening {spec.starts * SCREEN_PER_START} candidate designs "
+                    f"for {spec.starts} starts")
     outcome = solve(spec, samples, progress)
     progress.report(76.0, "result")
     shown = presented_optimum(outcome, ws, samples, spec.branch, spec.identical_platforms)
@@ -87,6 +95,12 @@ def run_optimisation(spec: OptimisationSpec, ctx: JobContext) -> JobOutcome:
         "starts": [_start_entry(s, outcome.best_start, samples, spec.branch)
                    for s in outcome.starts],
         "evaluations": outcome.evaluations,
+        "screening": {
+            "candidates_per_start": SCREEN_PER_START,
+            "candidates": spec.starts * SCREEN_PER_START,
+            "evaluations": outcome.screen_evaluations,
+            "rule": _SCREEN_RULE,
+        },
         "budget": {"starts": spec.starts, "max_evaluations_per_start":
                    spec.max_evaluations_per_start},
         "free": list(spec.free),

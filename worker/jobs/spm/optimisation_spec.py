@@ -26,6 +26,7 @@ __all__ = [
     "MAX_EVALUATIONS_PER_START",
     "MAX_STARTS",
     "PARAMETERS",
+    "SCREEN_PER_START",
     "OptimisationBounds",
     "OptimisationSpec",
     "Parameter",
@@ -38,6 +39,9 @@ MAX_STARTS = 64
 MAX_EVALUATIONS_PER_START = 2000
 #: Designs per side of the grid over the optimum's rectangle drawn in the index map.
 INDEX_MAP_POINTS = 31
+#: Candidate designs screened per start to seed it from the design space (the
+#: kinematics' ``screen``; METHODS.md §3: the optima sit on the design-space edges).
+SCREEN_PER_START = 32
 
 _Range = Annotated[tuple[float, float], entries(2, "a search range needs two angles [lo, hi]")]
 
@@ -120,8 +124,9 @@ class OptimisationSpec(FrozenSpec):
         8,
         ge=1,
         le=MAX_STARTS,
-        description=f"Least-squares runs (1..{MAX_STARTS}), each from a start drawn uniformly "
-        "in the design space (the rectangle of eq 19 and the beta/gamma bounds).",
+        description=f"Least-squares runs (1..{MAX_STARTS}), each from a start seeded from the "
+        f"design space (the rectangle of eq 19 and the beta/gamma bounds): the best of "
+        f"{SCREEN_PER_START} seeded candidates per start, a third of them on its edges.",
     )
     max_evaluations_per_start: int = Field(
         100,

@@ -2,9 +2,13 @@
 
 The solver may end on any of the designs that score exactly alike (METHODS.md §3,
 "Equivalences"): e.g. (134.8, 90, 90) for Table 2's (45.2, 90, 90), or (180 - a1,
-180 - a2, 180 - beta, 180 - gamma) with identical platforms. The job shows the one that
-reads like the paper's tables, among those with the requested branch and the same eq 28
-value on the very same samples, and says which design the solver found.
+180 - a2, 180 - beta, 180 - gamma) with identical platforms. On mirror-symmetric samples
+(psi -> (180 - psi1, psi2, -psi3) maps them onto themselves, as the default layouts of a
+full turn or of a torsion range symmetric about 0 do) the mirror image of the
+supplementary twin, (180 - a1, 180 - a2) on the SAME branch, scores alike too: e.g.
+(123.5, 92.7, 47.4) and (56.5, 87.3, 47.4) for Table 3. The job shows the one that reads
+like the paper's tables, among those with the requested branch and the same eq 28 value
+on the very same samples, and says which design the solver found.
 """
 
 from __future__ import annotations
@@ -22,13 +26,18 @@ from worker.jobs.spm.design_entries import (
 from worker.jobs.spm.workspace_sampling import FloatArray
 from worker.kinematics import spherical_parallel as sp
 
-__all__ = ["SOLVER_RELATION", "Presented", "optimum_entry", "presented_optimum"]
+__all__ = ["MIRROR_RELATION", "SOLVER_RELATION", "Presented", "optimum_entry",
+           "presented_optimum"]  # fmt: skip
 
 #: Twins whose eq 28 value differs from the optimum's by at most this score the same.
 _SAME_SCORE = 1e-9
 #: "Above 90°" by more than the solver's rounding (optima sit at 90° ± 1e-5°).
 _RIGHT_ANGLE = math.radians(90.001)
 SOLVER_RELATION = "as found by the solver"
+MIRROR_RELATION = (
+    "(180 - a1, 180 - a2), same branch: the mirror image of the supplementary twin, equal "
+    "on these mirror-symmetric samples"
+)
 
 
 @dataclass(frozen=True)
@@ -50,18 +59,20 @@ def presented_optimum(
     """The solver's best design or the twin that reads like the paper's tables.
 
     A twin qualifies only with the requested branch and the same eq 28 value on the
-    unshifted samples (to 1e-9), so nothing about the optimum changes but its angles.
+    unshifted samples (to 1e-9), so nothing about the optimum changes but its angles; so
+    does the mirrored supplementary twin (see the module doc), under the same check.
     """
     if outcome.design is None or outcome.indices is None:
         return None
     best = outcome.indices.mean_square_inverse_condition
     candidates = [Presented(outcome.design, outcome.indices, SOLVER_RELATION)]
-    for twin in outcome.twins:
-        if twin.branch != branch:
-            continue
-        indices = sp.workspace_indices(twin.design, samples, branch)
+    design = outcome.design
+    mirrored = replace(design, alpha1=math.pi - design.alpha1, alpha2=math.pi - design.alpha2)
+    others = [(t.design, t.relation) for t in outcome.twins if t.branch == branch]
+    for other, relation in [*others, (mirrored, MIRROR_RELATION)]:
+        indices = sp.workspace_indices(other, samples, branch)
         if abs(indices.mean_square_inverse_condition - best) <= _SAME_SCORE:
-            candidates.append(Presented(twin.design, indices, twin.relation))
+            candidates.append(Presented(other, indices, relation))
 
     def convention(candidate: Presented) -> tuple[bool, bool]:
         return (candidate.design.beta > _RIGHT_ANGLE, candidate.design.alpha1 > _RIGHT_ANGLE)

@@ -139,6 +139,8 @@ def test_fig_4_numbers() -> None:
     assert len(a["dimensions"]) == 11 and a["total_length"] == 88
     assert a["dimensions"][0] == {"side": "1.a", "length": 6.0, "normalized": 6 / 88}
     assert a["P"] == b["P"] == 6 * 7 * 9 * 11 * 10 * 6 * 8 * 9 * 7 * 5 * 10
+    # every polygon side is one dimension: 11 lengths, each divided by their sum 88
+    assert a["P_normalized"] == b["P_normalized"] == pytest.approx(a["P"] / 88**11, rel=1e-12)
     assert a["arrangements"] is None
     assert ranking(outcome, "by_P") == [(1, "Fig 4a"), (1, "Fig 4b")]
     assert ranking(outcome, "by_Q") == [(1, "Fig 4b"), (2, "Fig 4a")]

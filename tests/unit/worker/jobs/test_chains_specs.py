@@ -230,6 +230,23 @@ def test_fourbar_rejects(inputs: dict[str, Any], message: str) -> None:
         FourBarGrashofSpec.model_validate(inputs)
 
 
+@pytest.mark.parametrize(
+    ("lengths", "index", "message"),
+    [
+        ([1, 10, 1, 1], 1, "link 1 (10) is not shorter than the sum of the other three (3)"),
+        ([1, 1, 1, 3], 3, "link 3 (3) is not shorter than the sum of the other three (3)"),
+        ([0.1, 0.2, 0.3, 0.6], 3, "link 3 (0.6) is not shorter"),  # flat only, in decimals
+    ],
+)
+def test_fourbar_that_cannot_close_is_named(lengths: list[float], index: int, message: str):
+    with pytest.raises(InvalidInputs) as info:
+        validate_inputs(FOURBAR_GRASHOF, {"lengths": lengths, "ground": 0})
+    (error,) = info.value.errors
+    assert error["field"] == f"inputs.lengths[{index}]"
+    assert error["message"].startswith(f"lengths[{index}]: the loop cannot close: {message}")
+    FourBarGrashofSpec.model_validate({"lengths": [1, 1, 1, 2.99], "ground": 0})  # it moves
+
+
 # -- costs -------------------------------------------------------------------------------
 
 

@@ -155,7 +155,8 @@ def test_identical_platforms(example_3: tuple[JobOutcome, RecordingContext]) -> 
     assert result["identical_platforms"] and result["gamma_deg"] is None
     assert [r["beta_deg"] for r in result["designs"]] == [float(b) for b in range(20, 71, 5)]
     assert all(r["gamma_deg"] == r["beta_deg"] for r in result["designs"])
-    assert "grid" in result["method"] and result["index_map"] is None
+    assert result["index_map"] is None
+    assert "a 36 x 9 x 5 grid" in result["method"]  # 30° of torsion: 5 values, 7.5° apart
     ws = sp.Workspace(math.radians(45), (math.radians(-15), math.radians(15)), False)
     for row in result["designs"]:
         d1, d2 = sp.design_widths(ws, math.radians(row["beta_deg"]), math.radians(row["beta_deg"]))

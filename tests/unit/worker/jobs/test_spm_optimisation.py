@@ -20,7 +20,8 @@ from worker.kinematics import spherical_parallel as sp
 from worker.plotting.render import figure_artifacts
 
 RESULT_KEYS = {
-    "success", "message", "optimum", "starts", "evaluations", "budget", "free", "held_deg",
+    "success", "message", "optimum", "starts", "evaluations", "screening", "budget", "free",
+    "held_deg",
     "identical_platforms", "bounds_deg", "variables", "solver", "branch", "seed",
     "singularity_tolerance", "workspace", "sampling", "paper", "data",
 }  # fmt: skip
@@ -97,7 +98,12 @@ def test_result_document(table_1: tuple[JobOutcome, RecordingContext]) -> None:
     assert result["bounds_deg"] == {"beta_deg": [1.0, 179.0]}
     assert result["sampling"]["n"] == 144 and result["sampling"]["default"]
     assert len(result["starts"]) == 8 == result["budget"]["starts"]
-    assert result["evaluations"] == sum(s["evaluations"] for s in result["starts"])
+    screening = result["screening"]
+    assert screening["candidates"] == 8 * screening["candidates_per_start"] == 8 * 32
+    assert 0 < screening["evaluations"] <= screening["candidates"]
+    assert result["evaluations"] == screening["evaluations"] + sum(
+        s["evaluations"] for s in result["starts"]
+    )
     assert sum(s["best"] for s in result["starts"]) == 1
     for start in result["starts"]:
         assert isinstance(start["converged"], bool) and start["message"]
@@ -116,9 +122,11 @@ def test_progress_advances_during_the_optimisation(
     ctx = table_1[1]
     assert ctx.percents == sorted(ctx.percents) and ctx.percents[-1] == 100.0
     during = [(p, m) for p, m in ctx.reports if "starts done" in m]
-    assert [m for _, m in during][-8:] == [f"optimisation: {k} of 8 starts done" for k in
-                                           range(1, 9)]  # fmt: skip
-    assert len({p for p, _ in during}) == 9  # 0 of 8, then one step per start
+    assert [m for _, m in during] == [f"optimisation: {k} of 8 starts done" for k in
+                                      range(9)]  # fmt: skip
+    percents = [p for p, _ in during]
+    assert len(set(percents)) == 9  # screened (0 of 8), then one step per start
+    assert percents[0] > 0.0 and percents[-1] < 100.0  # intermediate values
 
 
 def test_table_1_optimum(table_1: tuple[JobOutcome, RecordingContext]) -> None:
@@ -230,6 +238,11 @@ def test_table_3_optimum_beats_the_printed_design(
     assert optimum["beta_deg"] == optimum["gamma_deg"] and len(result["starts"]) == 2
     # on the default 144 samples (METHODS.md: angles move by 1-2° with the layout)
     assert angles(optimum)[:3] == pytest.approx((56.5, 87.3, 47.4), abs=ANGLE)
+    if optimum["found_as"] is not None:  # e.g. (123.5, 92.7, 47.4): same branch, same value
+        found = rescored(optimum["found_as"], result, optimum["branch"])
+        assert found.mean_square_inverse_condition == pytest.approx(
+            optimum["mean_square_inverse_condition"], abs=1e-9
+        )
     assert optimum["mean_square_inverse_condition"] == pytest.approx(0.768, abs=INDEX)
     own = rescored(optimum, result, optimum["branch"])
     assert optimum["rms_inverse_condition"] == pytest.approx(own.rms_inverse_condition, abs=1e-4)

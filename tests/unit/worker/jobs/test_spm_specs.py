@@ -22,7 +22,7 @@ from worker.jobs.spm.costs import (
     design_space_cost,
     optimisation_cost,
 )
-from worker.jobs.spm.optimisation_spec import OptimisationSpec
+from worker.jobs.spm.optimisation_spec import SCREEN_PER_START, OptimisationSpec
 from worker.jobs.spm.specs import BetaRange, ConditioningMapSpec, DesignSpaceSpec
 from worker.processes import default_registry
 
@@ -250,7 +250,8 @@ def test_design_space_cost() -> None:
 
 def test_optimisation_cost_counts_starts_samples_and_budget() -> None:
     base = optimisation_cost(optimisation_spec(plots=False))
-    assert base == 8 * 100 * 4 * (144 + DESIGN_OVERHEAD) + 4 * 144 + WORKSPACE_MINIMUM_COST
+    per_start = 100 * 4 + SCREEN_PER_START  # budget x (1 + 3 variables) + the screen
+    assert base == 8 * per_start * (144 + DESIGN_OVERHEAD) + 4 * 144 + WORKSPACE_MINIMUM_COST
     assert optimisation_cost(optimisation_spec(plots=False, starts=16)) > 1.9 * base
     assert optimisation_cost(optimisation_spec(plots=False, max_evaluations_per_start=200)) > (
         1.9 * base
@@ -259,7 +260,7 @@ def test_optimisation_cost_counts_starts_samples_and_budget() -> None:
                                 identical_platforms=True, plots=False)  # fmt: skip
     per_evaluation = 144 + DESIGN_OVERHEAD + LIMITED_WIDTH_COST
     assert optimisation_cost(limited) == (
-        8 * 100 * 4 * per_evaluation + 4 * 144 + WORKSPACE_MINIMUM_COST
+        8 * per_start * per_evaluation + 4 * 144 + WORKSPACE_MINIMUM_COST
     )
 
 

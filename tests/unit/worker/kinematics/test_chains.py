@@ -2,8 +2,10 @@
 
 from __future__ import annotations
 
+import itertools
 import math
 import re
+from collections.abc import Mapping
 from typing import Any
 
 import numpy as np
@@ -202,6 +204,70 @@ def test_q_is_the_same_for_rotations_and_reflections(lengths: list[float], k: in
 def test_normalised_p_is_largest_for_equal_lengths(lengths: list[float]) -> None:
     n = len(lengths)
     assert c.normalized_length_product(lengths) <= (1.0 / n) ** n * (1 + 1e-12)
+
+
+def slow_q(loops: list[list[float]]) -> float:
+    """eq 3 written out: per loop, eps_i = l_(i-1) l_i - l_i l_(i+1) (cyclic), squared."""
+    total = 0.0
+    for loop in loops:
+        m = len(loop)
+        for i in range(m):
+            eps = loop[i - 1] * loop[i] - loop[i] * loop[(i + 1) % m]
+            total += eps * eps
+    return total
+
+
+@settings(max_examples=100, deadline=None)
+@given(lengths_st)
+def test_q_matches_a_slow_implementation(lengths: list[float]) -> None:
+    assert c.loop_q(lengths) == pytest.approx(slow_q([lengths]), rel=1e-12, abs=1e-9)
+    total = math.fsum(lengths)
+    slow_p = math.prod(v / total for v in lengths)
+    assert c.normalized_length_product(lengths) == pytest.approx(slow_p, rel=1e-12)
+
+
+@settings(max_examples=40, deadline=None)
+@given(st.lists(st.integers(1, 6), min_size=3, max_size=6))
+def test_arrangements_cover_every_permutation(lengths: list[int]) -> None:
+    # brute force over all n! orders: the same set of Q values, the same best Q
+    every_q = {slow_q([list(map(float, order))]) for order in itertools.permutations(lengths)}
+    ranked = c.ranked_arrangements(lengths)
+    assert set(ranked.q.tolist()) == every_q
+    assert ranked.q[0] == min(every_q)
+    assert (np.diff(ranked.q) >= 0).all()
+
+
+def scaled(chain: c.Chain, s: float) -> c.Chain:
+    """Every binary link and every polygon side multiplied by s."""
+    links: dict[str, c.LinkLengths] = {
+        name: ({k: s * v for k, v in value.items()} if isinstance(value, Mapping) else s * value)
+        for name, value in chain.links.items()
+    }
+    return c.Chain(chain.name, links, chain.loops)
+
+
+@settings(max_examples=50, deadline=None)
+@given(st.sampled_from([FIG_4A, FIG_4B]), scale_st)
+def test_multi_loop_chains_scale_with_each_side_one_dimension(chain: c.Chain, s: float) -> None:
+    base, big = c.chain_structure(chain), c.chain_structure(scaled(chain, s))
+    q = sum(float(c.loop_q(loop)) for loop in base.loop_lengths)
+    q_s = sum(float(c.loop_q(loop)) for loop in big.loop_lengths)
+    assert q_s == pytest.approx(s**4 * q, rel=1e-9)
+    dims = [v for _, v in base.dimensions]
+    dims_s = [v for _, v in big.dimensions]
+    assert c.normalized_length_product(dims_s) == pytest.approx(
+        c.normalized_length_product(dims), rel=1e-9
+    )
+    # 11 dimensions (5 binary links, 3 + 3 polygon sides), so P grows as s^11
+    assert c.length_product(dims_s) == pytest.approx(s**11 * c.length_product(dims), rel=1e-9)
+
+
+def test_fig_4_normalised_p_counts_every_polygon_side() -> None:
+    dims = [v for _, v in c.chain_structure(FIG_4A).dimensions]
+    assert sorted(dims) == sorted([6, 7, 9, 11, 10, 6, 8, 9, 7, 5, 10])
+    assert c.length_product(dims) == 6286896000
+    assert c.normalized_length_product(dims) == pytest.approx(6286896000 / 88**11, rel=1e-12)
+    assert c.normalized_length_product(dims) == pytest.approx(2.5652e-12, abs=5e-17)
 
 
 def test_batched_shapes() -> None:

@@ -150,6 +150,17 @@ def away_from_change_points(lengths: tuple[float, ...], margin: float = 1e-3) ->
     return all(abs(x) > margin * total for x in (a + b - c - d, a + c - b - d, a + d - b - c))
 
 
+#: Away from change points, the motions of input, coupler and output relative to the
+#: ground (C: turns fully, R: rocks) name the classification on their own.
+CLASSIFICATION_OF_MOTIONS = {
+    "CCC": "double-crank",
+    "CRR": "crank-rocker",
+    "RRC": "crank-rocker",
+    "RCR": "double-rocker",
+    "RRR": "triple-rocker",
+}
+
+
 @settings(max_examples=60, deadline=None)
 @given(lengths_st, st.integers(0, 3))
 def test_classification_agrees_with_the_simulator(lengths, ground) -> None:
@@ -162,6 +173,11 @@ def test_classification_agrees_with_the_simulator(lengths, ground) -> None:
         assert simulated[s].sum() == 3 and simulated.sum() == 6
     else:
         assert not simulated.any()
+    # Barker's letters and the classification, read off the simulated motions alone
+    motions = "".join("C" if simulated[ground, (ground + k) % 4] else "R" for k in (1, 2, 3))
+    code = result.barker.code
+    assert motions == ("RRR" if code.startswith("RRR") else code[1:])
+    assert result.classification == CLASSIFICATION_OF_MOTIONS[motions]
 
 
 @pytest.mark.parametrize(

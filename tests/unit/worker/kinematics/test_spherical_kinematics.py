@@ -80,6 +80,9 @@ def test_every_inverse_kinematics_solution_closes_on_its_branch(
     assert np.einsum("ij,ij->i", w, v) == pytest.approx([math.cos(design.alpha2)] * 3, abs=1e-9)
     b = np.einsum("ij,ij->i", np.cross(u, w), v)
     assert np.all(branch * b >= -1e-9)
+    # the closed form's b_i is (u_i x w_i) . v_i itself, sign included
+    frames = leg_frames(design)
+    assert solve_legs(design, frames, v, branch).b == pytest.approx(b, abs=1e-9)
 
 
 @FAST

@@ -54,6 +54,18 @@ def test_chain_graphs_render_with_loops_and_side_lengths() -> None:
         assert text in strings, text
 
 
+def legend_texts(fig: Figure) -> list[str]:
+    return [t.get_text() for legend in fig.legends for t in legend.get_texts()]
+
+
+def test_chain_graphs_legend_names_the_vertex_kinds_drawn() -> None:
+    fig = p.chain_graphs_figure([FIG_4B], title="Graphs", length_unit="cm")
+    assert legend_texts(fig) == ["binary link", "ternary link", "joint", "loop (numbered)",
+                                 "side length used by a loop [cm]"]  # fmt: skip
+    single = p.chain_graphs_figure([quad("Fig 2e", (18, 10, 17, 15))], title="One")
+    assert "ternary link" not in legend_texts(single)
+
+
 def test_many_chains_wrap_into_rows() -> None:
     graphs = [quad(f"q{i}", (1.0 + i, 2.0, 3.0, 4.0)) for i in range(7)]
     fig = p.chain_graphs_figure(graphs, title="Seven")
@@ -68,8 +80,17 @@ def test_bars_label_values_and_ranks() -> None:
     for text in ("0.0039   #1", "0.0035   #2", "0   #1", "15650   #2", "34592   #3", "Bars",
                  "Q  (smaller: more parallel)"):
         assert text in strings, text
+    assert [ax.get_xlabel() for ax in fig.axes] == ["P of l / sum(l), eq 1 (no unit)",
+                                                    "Q, eq 3 [units⁴]"]  # fmt: skip
+    assert fig.axes[0].get_ylabel() == "chain"
+    assert legend_texts(fig) == ["best of the measure (rank #1; ties share a rank)",
+                                 "other chains (value and rank #k on the bar)"]  # fmt: skip
     normalised = p.parallelism_bars_figure(["A"], p_normalized=[0.1], q=[0.2], title="N",
                                            q_normalized=True)  # fmt: skip
+    assert normalised.axes[1].get_xlabel() == "Q of l / sum(l), eq 3 (no unit)"
+    in_cm = p.parallelism_bars_figure(["A"], p_normalized=[0.1], q=[0.2], title="C",
+                                      length_unit="cm")  # fmt: skip
+    assert in_cm.axes[1].get_xlabel() == "Q, eq 3 [cm⁴]"
     assert "Q of normalised lengths  (smaller: more parallel)" in svg_strings(
         figure_artifacts(normalised, "n", "N")[1].data
     )
@@ -84,8 +105,18 @@ def test_fourbar_figure_renders() -> None:
         length_unit="cm",
     )  # fmt: skip
     strings = svg_strings(figure_artifacts(fig, "fourbar", "Four-bar")[1].data)
-    for text in ("1: input 10", "0: ground 18", "full turn", "rocks", "x [cm]"):
+    for text in ("1: input 10", "0: ground 18", "full turn", "rocks", "x [cm]", "link that moves",
+                 "link held fixed"):  # fmt: skip
         assert text in strings, text
+    assert legend_texts(fig) == [
+        "path of the input-coupler joint",
+        "path of the coupler-output joint, assembly branch 1",
+        "path of the coupler-output joint, assembly branch 2",
+        "poses along branch 1",
+        "ground pivots",
+        "turns fully",
+        "rocks (cannot turn fully)",
+    ]
 
 
 def test_fourbar_figure_of_a_chain_that_never_closes_at_theta_zero() -> None:
