@@ -13,7 +13,11 @@ from typing import Any
 import numpy as np
 
 from worker.jobs.planar2dof.examples import PAPER_ASPECT_RATIO, TABLE_I, TableIColumn
-from worker.jobs.planar2dof.specs import ConditioningMapSpec, OptimisationSpec
+from worker.jobs.planar2dof.specs import (
+    DEFAULT_DELTA_RANGE,
+    ConditioningMapSpec,
+    OptimisationSpec,
+)
 from worker.kinematics import planar_parallel as pp
 
 __all__ = [
@@ -27,6 +31,10 @@ __all__ = [
 CHECK_MESH = 401
 #: METHODS.md: [beta] that would give the paper's 0.581.
 BETA_FOR_0581 = "35.3-35.4°"
+#: §IV on Fig. 8: the mean 1/kappa over delta in [1, 2.5] "varies between" these, per [beta].
+PAPER_MEAN_RANGES = {30.0: (0.74, 0.80), 35.0: (0.77, 0.83)}
+#: Half a unit in the last place of the paper's two-decimal range.
+PAPER_MEAN_ROUNDING = 0.005
 
 
 def table_column(spec: OptimisationSpec) -> tuple[TableIColumn, bool] | None:
@@ -137,26 +145,62 @@ def _optimum_note(column: TableIColumn, result: dict[str, Any]) -> str | None:
     optimum, window = result["optimum"], result["window"]
     if optimum is None or window is None:
         return None
-    return (f"The paper's optimum delta = {column.delta:g}; eta is flat: within 0.001 of its "
+    note = (f"The paper's optimum delta = {column.delta:g}; eta is flat: within 0.001 of its "
             f"maximum on [{window[0]:.4g}, {window[1]:.4g}], max at delta = "
             f"{optimum['delta']:.4g} (eta = {optimum['eta']:.4f}).")  # fmt: skip
+    peak = result["inverse_condition_limit_delta"]
+    if peak is not None and not window[0] <= peak <= window[1]:
+        note += (f" 1/kappa0 of eq (17) peaks at delta = {peak:.4f}, outside that window: "
+                 "the paper's §IV says the two maxima coincide.")  # fmt: skip
+    return note
+
+
+def _mean_range_note(
+    column: TableIColumn, spec: OptimisationSpec, rows: tuple[pp.SweepRow, ...]
+) -> str | None:
+    """The paper's range of the mean 1/kappa over its delta range (§IV, Fig. 8) vs the
+    sweep's; only for sweeps over that range."""
+    if spec.delta is not None or spec.sweep_range != DEFAULT_DELTA_RANGE:
+        return None
+    found = [r for r in rows if r.rectangle.found and math.isfinite(r.mean_inverse_condition)]
+    if not found:
+        return None
+    low = min(found, key=lambda r: r.mean_inverse_condition)
+    high = max(found, key=lambda r: r.mean_inverse_condition)
+    paper_low, paper_high = PAPER_MEAN_RANGES[column.allowable_pressure_angle_deg]
+    panel = "ab"[TABLE_I.index(column)]
+    note = (
+        f"The paper's text (Fig. 8({panel})) puts the mean 1/kappa between {paper_low:.2f} "
+        f"and {paper_high:.2f} over delta in [1, 2.5]; this sweep finds "
+        f"{low.mean_inverse_condition:.4f} (delta = {low.delta:.4g}) to "
+        f"{high.mean_inverse_condition:.4f} (delta = {high.delta:.4g}) on {spec.mean_mesh} x "
+        f"{spec.mean_mesh} nodes"
+    )
+    if (abs(low.mean_inverse_condition - paper_low) > PAPER_MEAN_ROUNDING
+            or abs(high.mean_inverse_condition - paper_high) > PAPER_MEAN_ROUNDING):  # fmt: skip
+        note += (", beyond the paper's two-decimal rounding (the mean grows with the mesh, "
+                 "METHODS.md §2)")  # fmt: skip
+    return note + "."
 
 
 def optimisation_errata_notes(
     spec: OptimisationSpec, result: dict[str, Any], rows: tuple[pp.SweepRow, ...]
 ) -> list[str]:
-    """The paper's Table I errata that concern this request (METHODS.md §2), as notes."""
+    """The paper's Table I errata that concern this request (METHODS.md §2), and its §IV
+    statements on Fig. 8 (the optimum, the range of the mean) next to this sweep's, as notes.
+
+    Requests starting from [beta] (a Table I column's angle, lambda = 4) and sweeps or the
+    printed delta at a printed limit get them; other requests none."""
     match = table_column(spec)
     if match is None:
         return []
     column, from_inputs = match
-    notes = []
-    if from_inputs:
-        notes.append(_limit_note(column, result))
-        if (note := _optimum_note(column, result)) is not None:
+    if not from_inputs and spec.delta is not None and spec.delta != column.delta:
+        return []  # the printed limit at another single delta: no Table I row to compare
+    notes = [_limit_note(column, result)] if from_inputs else []
+    for note in (_optimum_note(column, result), _mean_range_note(column, spec, rows)):
+        if note is not None:
             notes.append(note)
-    elif spec.delta != column.delta:
-        return notes
     if (row := _row_at(rows, column.delta)) is not None:
         prefix = (f"At the paper's delta = {column.delta:g} with 1/kappa0 = "
                   f"{result['inverse_condition_limit']:.5f}: " if from_inputs else "")  # fmt: skip
