@@ -47,6 +47,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from worker.kinematics.grashof import FourBarCheck, four_bar_check
+from worker.kinematics.parameter_errors import bad_parameter
 
 __all__ = [
     "BARKER_CLASSES",
@@ -137,12 +138,6 @@ class FourBarClassification:
         return "crank" if bool(self.full_turns[self.ground, link]) else "rocker"
 
 
-def _bad(parameter: str, function: str, requirement: str, got: object) -> ValueError:
-    return ValueError(
-        f"The {parameter!r} parameter of {function} must be {requirement}. Got {got!r} instead."
-    )
-
-
 def full_turn_pairs(lengths: ArrayLike, rtol: float = CHANGE_POINT_RTOL) -> BoolArray:
     """Which links of four-bar chains turn fully relative to which.
 
@@ -152,7 +147,7 @@ def full_turn_pairs(lengths: ArrayLike, rtol: float = CHANGE_POINT_RTOL) -> Bool
     """
     arr = np.asarray(lengths, dtype=np.float64)
     if arr.shape[-1:] != (4,) or not np.all(np.isfinite(arr)) or not np.all(arr > 0):
-        raise _bad(
+        raise bad_parameter(
             "lengths", "full_turn_pairs", "finite positive lengths of shape (..., 4)", lengths
         )
     tol = rtol * arr.sum(axis=-1)
@@ -182,9 +177,9 @@ def classify_four_bar(lengths: Sequence[float], ground: int) -> FourBarClassific
     except (TypeError, ValueError):
         values = ()
     if len(values) != 4 or not all(math.isfinite(v) and v > 0 for v in values):
-        raise _bad("lengths", function, "four finite positive lengths", lengths)
+        raise bad_parameter("lengths", function, "four finite positive lengths", lengths)
     if not (isinstance(ground, int) and 0 <= ground <= 3):
-        raise _bad("ground", function, "a link index 0, 1, 2 or 3", ground)
+        raise bad_parameter("ground", function, "a link index 0, 1, 2 or 3", ground)
     names = ("0", "1", "2", "3")
     check = four_bar_check(values, names)
     tol = CHANGE_POINT_RTOL * math.fsum(values)
@@ -232,9 +227,9 @@ def four_bar_poses(lengths: Sequence[float], ground: int, input_angles: ArrayLik
     """
     values = np.asarray(lengths, dtype=np.float64)
     if values.shape != (4,) or not np.all(np.isfinite(values)) or not np.all(values > 0):
-        raise _bad("lengths", "four_bar_poses", "four finite positive lengths", lengths)
+        raise bad_parameter("lengths", "four_bar_poses", "four finite positive lengths", lengths)
     if not (isinstance(ground, int) and 0 <= ground <= 3):
-        raise _bad("ground", "four_bar_poses", "a link index 0, 1, 2 or 3", ground)
+        raise bad_parameter("ground", "four_bar_poses", "a link index 0, 1, 2 or 3", ground)
     theta = np.asarray(input_angles, dtype=np.float64).reshape(-1)
     g, i, c, o = ground, (ground + 1) % 4, (ground + 2) % 4, (ground + 3) % 4
     pivot_out = np.array([values[g], 0.0])

@@ -17,13 +17,9 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike
 
+from worker.kinematics.parameter_errors import bad_parameter
+
 __all__ = ["FourBarCheck", "end_effector_fully_rotatable", "four_bar_check"]
-
-
-def _bad(parameter: str, function: str, requirement: str, got: object) -> ValueError:
-    return ValueError(
-        f"The {parameter!r} parameter of {function} must be {requirement}. Got {got!r} instead."
-    )
 
 
 @dataclass(frozen=True)
@@ -57,10 +53,10 @@ def four_bar_check(
     except (TypeError, ValueError):
         values = ()
     if len(values) != 4 or not all(math.isfinite(v) and v >= 0 for v in values):
-        raise _bad("lengths", function, "four finite non-negative lengths", lengths)
+        raise bad_parameter("lengths", function, "four finite non-negative lengths", lengths)
     labels = tuple(str(name) for name in names)
     if len(labels) != 4 or len(set(labels)) != 4:
-        raise _bad("names", function, "four distinct labels", names)
+        raise bad_parameter("names", function, "four distinct labels", names)
     shortest = min(range(4), key=values.__getitem__)
     longest = max(range(4), key=values.__getitem__)
     if shortest == longest:  # all equal: any two distinct links serve as s and l
@@ -92,9 +88,9 @@ def end_effector_fully_rotatable(links: ArrayLike, distance: float) -> bool:
     except (TypeError, ValueError):
         arr = np.empty(0)
     if arr.shape != (3,) or not np.all(np.isfinite(arr)) or not np.all(arr > 0):
-        raise _bad("links", function, "three finite positive lengths (l1, l2, l3)", links)
+        raise bad_parameter("links", function, "three finite positive lengths (l1, l2, l3)", links)
     if not (isinstance(distance, numbers.Real) and math.isfinite(distance) and distance >= 0):
-        raise _bad("distance", function, "a finite non-negative distance", distance)
+        raise bad_parameter("distance", function, "a finite non-negative distance", distance)
     l1, l2, l3 = (float(v) for v in arr)
     check = four_bar_check((l1, l2, l3, float(distance)), ("l1", "l2", "l3", "d"))
     return check.is_grashof and min(l3, float(distance)) <= min(l1, l2)

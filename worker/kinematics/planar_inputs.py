@@ -10,16 +10,16 @@ from __future__ import annotations
 import math
 import numbers
 from collections.abc import Callable
-from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
+
+from worker.kinematics.parameter_errors import bad_parameter
 
 __all__ = [
     "BoolArray",
     "FloatArray",
     "Links",
-    "bad_parameter",
     "checked_array",
     "checked_joint_limits",
     "checked_links",
@@ -30,18 +30,6 @@ __all__ = [
 FloatArray = NDArray[np.float64]
 BoolArray = NDArray[np.bool_]
 Links = tuple[float, float, float]
-
-
-def bad_parameter(parameter: str, function: str, requirement: str, got: Any) -> ValueError:
-    shown = repr(got)
-    if len(shown) > 80:  # long arrays: name the shape, not the values
-        try:
-            shown = f"an array of shape {np.shape(got)}"
-        except ValueError:
-            shown = shown[:77] + "..."
-    return ValueError(
-        f"The {parameter!r} parameter of {function} must be {requirement}. Got {shown} instead."
-    )
 
 
 def checked_array(

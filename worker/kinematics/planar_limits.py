@@ -16,11 +16,11 @@ from collections.abc import Callable
 import numpy as np
 from numpy.typing import ArrayLike
 
+from worker.kinematics.parameter_errors import bad_parameter
 from worker.kinematics.planar_inputs import (
     BoolArray,
     FloatArray,
     Links,
-    bad_parameter,
     checked_joint_limits,
     checked_links,
     checked_points,

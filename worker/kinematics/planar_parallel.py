@@ -36,12 +36,12 @@ import numpy as np
 from numpy.typing import ArrayLike
 from scipy.optimize import brentq, minimize_scalar
 
+from worker.kinematics.parameter_errors import bad_parameter
 from worker.kinematics.planar_parallel_model import Actuation as Actuation
 from worker.kinematics.planar_parallel_model import Architecture as Architecture
 from worker.kinematics.planar_parallel_model import (
     BoolArray,
     FloatArray,
-    bad_parameter,
     chain_components,
     chain_terms,
     checked_mode,

@@ -35,6 +35,8 @@ from typing import Any, Literal, get_args
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from worker.kinematics.parameter_errors import bad_parameter
+
 __all__ = [
     "SIGNS",
     "Actuation",
@@ -43,7 +45,6 @@ __all__ = [
     "ChainTerms",
     "FloatArray",
     "WorkingMode",
-    "bad_parameter",
     "chain_components",
     "chain_terms",
     "checked_limit",
@@ -63,18 +64,6 @@ Actuation = Literal["proximal-arm", "telescopic-leg", "linear-drive"]
 WorkingMode = tuple[int, int]
 ACTUATIONS: tuple[str, ...] = get_args(Actuation)
 SIGNS = (1.0, -1.0)  # sgn(i), eq (1)
-
-
-def bad_parameter(parameter: str, function: str, requirement: str, got: Any) -> ValueError:
-    shown = repr(got)
-    if len(shown) > 80:  # long arrays: name the shape, not the values
-        try:
-            shown = f"an array of shape {np.shape(got)}"
-        except ValueError:
-            shown = shown[:77] + "..."
-    return ValueError(
-        f"The {parameter!r} parameter of {function} must be {requirement}. Got {shown} instead."
-    )
 
 
 def finite_real(value: object) -> bool:

@@ -14,12 +14,12 @@ from typing import Any, overload
 import numpy as np
 from scipy.optimize import minimize_scalar
 
+from worker.kinematics.parameter_errors import bad_parameter
 from worker.kinematics.planar_parallel_model import (
     SIGNS,
     Architecture,
     BoolArray,
     FloatArray,
-    bad_parameter,
     finite_real,
     inverse_condition_kernel,
 )

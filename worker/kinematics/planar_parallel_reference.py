@@ -14,7 +14,8 @@ from collections.abc import Sequence
 
 import numpy as np
 
-from worker.kinematics.planar_parallel_model import Architecture, bad_parameter, checked_mode
+from worker.kinematics.parameter_errors import bad_parameter
+from worker.kinematics.planar_parallel_model import Architecture, checked_mode
 
 __all__ = ["reference_jacobian", "sampled_inverse_condition"]
 

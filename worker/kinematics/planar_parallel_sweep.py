@@ -16,10 +16,10 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike
 
+from worker.kinematics.parameter_errors import bad_parameter
 from worker.kinematics.planar_parallel_columns import ArchitectureBatch, isotropic_batch
 from worker.kinematics.planar_parallel_model import (
     FloatArray,
-    bad_parameter,
     checked_limit,
     checked_mode,
     is_mirror_symmetric,

@@ -16,11 +16,11 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from worker.kinematics.parameter_errors import bad_parameter
 from worker.kinematics.planar_parallel_columns import bottom_runs, search_box, single
 from worker.kinematics.planar_parallel_model import (
     Architecture,
     FloatArray,
-    bad_parameter,
     checked_limit,
     checked_mode,
     inverse_condition_kernel,

@@ -24,11 +24,11 @@ from collections.abc import Sequence
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from worker.kinematics.parameter_errors import bad_parameter
 from worker.kinematics.planar_inputs import BoolArray as BoolArray
 from worker.kinematics.planar_inputs import FloatArray as FloatArray
 from worker.kinematics.planar_inputs import Links as Links
 from worker.kinematics.planar_inputs import (
-    bad_parameter,
     checked_array,
     checked_links,
     checked_points,

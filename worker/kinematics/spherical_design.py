@@ -27,7 +27,8 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike
 
-from worker.kinematics.planar_inputs import bad_parameter, checked_array
+from worker.kinematics.parameter_errors import bad_parameter
+from worker.kinematics.planar_inputs import checked_array
 from worker.kinematics.spherical_axis_reach import least_angle
 from worker.kinematics.spherical_model import (
     BoolArray,

@@ -16,7 +16,7 @@ from typing import NamedTuple
 import numpy as np
 from numpy.typing import ArrayLike
 
-from worker.kinematics.planar_inputs import bad_parameter
+from worker.kinematics.parameter_errors import bad_parameter
 from worker.kinematics.spherical_kinematics import REAL_TOLERANCE
 from worker.kinematics.spherical_model import (
     BoolArray,

@@ -14,9 +14,10 @@ from dataclasses import dataclass
 
 from numpy.typing import ArrayLike
 
+from worker.kinematics.parameter_errors import bad_parameter
 from worker.kinematics.planar_inputs import BoolArray as BoolArray
 from worker.kinematics.planar_inputs import FloatArray as FloatArray
-from worker.kinematics.planar_inputs import bad_parameter, checked_array
+from worker.kinematics.planar_inputs import checked_array
 
 __all__ = [
     "BoolArray",

@@ -34,7 +34,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 from scipy.optimize import OptimizeResult, least_squares
 
-from worker.kinematics.planar_inputs import bad_parameter
+from worker.kinematics.parameter_errors import bad_parameter
 from worker.kinematics.spherical_design import EDGE_TOLERANCE, design_margins
 from worker.kinematics.spherical_indices import (
     Indices,

@@ -10,7 +10,7 @@ import math
 import numbers
 from collections.abc import Mapping, Sequence
 
-from worker.kinematics.planar_inputs import bad_parameter
+from worker.kinematics.parameter_errors import bad_parameter
 
 __all__ = [
     "DEFAULT_BOUNDS",

@@ -14,7 +14,7 @@ import math
 import numpy as np
 from numpy.typing import ArrayLike
 
-from worker.kinematics.planar_inputs import bad_parameter
+from worker.kinematics.parameter_errors import bad_parameter
 from worker.kinematics.spherical_indices import Indices, PoseBatch, indices_from_batch
 from worker.kinematics.spherical_model import (
     FloatArray,

@@ -16,7 +16,7 @@ from typing import TypedDict
 
 import numpy as np
 
-from worker.kinematics.planar_inputs import bad_parameter
+from worker.kinematics.parameter_errors import bad_parameter
 from worker.kinematics.spherical_model import FloatArray, Workspace, checked_workspace
 
 __all__ = ["DEFAULT_COUNTS", "SampleLayout", "boundary_grid", "orientation_samples"]

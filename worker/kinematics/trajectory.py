@@ -10,10 +10,11 @@ from __future__ import annotations
 import math
 import numbers
 from dataclasses import dataclass
-from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
+
+from worker.kinematics.parameter_errors import bad_parameter
 
 __all__ = [
     "DistanceRange",
@@ -24,18 +25,6 @@ __all__ = [
 ]
 
 FloatArray = NDArray[np.float64]
-
-
-def _bad(parameter: str, function: str, requirement: str, got: Any) -> ValueError:
-    shown = repr(got)
-    if len(shown) > 80:  # long arrays: name the shape, not the values
-        try:
-            shown = f"an array of shape {np.shape(got)}"
-        except ValueError:
-            shown = shown[:77] + "..."
-    return ValueError(
-        f"The {parameter!r} parameter of {function} must be {requirement}. Got {shown} instead."
-    )
 
 
 @dataclass(frozen=True)
@@ -56,9 +45,9 @@ def _finite_array(value: object, parameter: str, function: str, requirement: str
     try:
         arr = np.asarray(value, dtype=np.float64)
     except (TypeError, ValueError):
-        raise _bad(parameter, function, requirement, value) from None
+        raise bad_parameter(parameter, function, requirement, value) from None
     if not np.all(np.isfinite(arr)):
-        raise _bad(parameter, function, requirement, value)
+        raise bad_parameter(parameter, function, requirement, value)
     return arr
 
 
@@ -66,7 +55,7 @@ def _point_array(points: ArrayLike, parameter: str, function: str) -> FloatArray
     requirement = "finite (x, y) coordinates of shape (n, 2), n >= 1"
     arr = _finite_array(points, parameter, function, requirement)
     if arr.ndim != 2 or arr.shape[0] < 1 or arr.shape[1] != 2:
-        raise _bad(parameter, function, requirement, points)
+        raise bad_parameter(parameter, function, requirement, points)
     return arr
 
 
@@ -102,14 +91,14 @@ def _coefficients(coefficients: ArrayLike, function: str) -> FloatArray:
     requirement = "a 1-D sequence of finite coefficients, highest power first"
     c = _finite_array(coefficients, "coefficients", function, requirement)
     if c.ndim != 1 or c.size < 1:
-        raise _bad("coefficients", function, requirement, coefficients)
+        raise bad_parameter("coefficients", function, requirement, coefficients)
     return c
 
 
 def _interval(x_start: float, x_end: float, function: str) -> tuple[float, float]:
     for name, value in (("x_start", x_start), ("x_end", x_end)):
         if not (isinstance(value, numbers.Real) and math.isfinite(value)):
-            raise _bad(name, function, "a finite number", value)
+            raise bad_parameter(name, function, "a finite number", value)
     return float(x_start), float(x_end)
 
 
@@ -165,6 +154,6 @@ def sample_polynomial(
     c = _coefficients(coefficients, function)
     a, b = _interval(x_start, x_end, function)
     if not (isinstance(samples, numbers.Integral) and samples >= 2):
-        raise _bad("samples", function, "an integer >= 2", samples)
+        raise bad_parameter("samples", function, "an integer >= 2", samples)
     x = np.linspace(a, b, int(samples))
     return np.stack([x, np.polyval(c, x)], axis=-1)
