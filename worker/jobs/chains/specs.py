@@ -17,7 +17,6 @@ from typing import Annotated, Any
 from pydantic import (
     BaseModel,
     BeforeValidator,
-    ConfigDict,
     Discriminator,
     Field,
     StringConstraints,
@@ -27,6 +26,7 @@ from pydantic import (
 )
 from pydantic_core import InitErrorDetails, PydanticCustomError
 
+from worker.jobs.spec_base import FrozenSpec
 from worker.kinematics import chains
 from worker.kinematics.fourbar import CHANGE_POINT_RTOL
 
@@ -65,9 +65,6 @@ SideRef = Annotated[
 ChainName = Annotated[str, StringConstraints(min_length=1, max_length=40)]
 
 
-class _Spec(BaseModel):
-    model_config = ConfigDict(extra="forbid", frozen=True, allow_inf_nan=False)
-
 
 def _counted(what: str, low: int, high: int) -> Any:
     """Check a list's length before its items, with one message, and publish the bounds.
@@ -88,7 +85,7 @@ def _bounds(low: int, high: int) -> dict[str, Any]:
     return {"minItems": low, "maxItems": high}
 
 
-class LoopChain(_Spec):
+class LoopChain(FrozenSpec):
     """A single loop of binary links, given by their lengths in order round the loop."""
 
     name: ChainName = Field(..., description="Name of the chain (unique among the chains).")
@@ -100,7 +97,7 @@ class LoopChain(_Spec):
     )
 
 
-class PolygonalLink(_Spec):
+class PolygonalLink(FrozenSpec):
     """A link with three or more joints: a rigid polygon with one length per side."""
 
     sides: dict[SideName, Length] = Field(
@@ -135,7 +132,7 @@ LinkValue = Annotated[
 ]
 
 
-class MultiLoopChain(_Spec):
+class MultiLoopChain(FrozenSpec):
     """Links by name and the loops round them, inner loops first, the peripheral last."""
 
     name: ChainName = Field(..., description="Name of the chain (unique among the chains).")
@@ -235,7 +232,7 @@ def _plots_field() -> Any:
     return Field(True, description="Render the PNG/SVG plots. false: the result document only.")
 
 
-class ChainParallelismSpec(_Spec):
+class ChainParallelismSpec(FrozenSpec):
     """Inputs of ``chain-parallelism``: P, Q and rankings of chains to compare."""
 
     chains: Annotated[tuple[Chain, ...], _counted("chains", 1, MAX_CHAINS)] = Field(
@@ -308,7 +305,7 @@ def _four_lengths(value: Any) -> Any:
     return value
 
 
-class FourBarGrashofSpec(_Spec):
+class FourBarGrashofSpec(FrozenSpec):
     """Inputs of ``fourbar-grashof``: a four-bar chain and its fixed link."""
 
     lengths: Annotated[tuple[Length, Length, Length, Length], BeforeValidator(_four_lengths)] = (

@@ -16,13 +16,13 @@ import math
 from typing import Annotated, Any, Literal
 
 from pydantic import (
-    BaseModel,
     BeforeValidator,
-    ConfigDict,
     Field,
     field_validator,
     model_validator,
 )
+
+from worker.jobs.spec_base import MAX_POINTS_PER_AXIS, FrozenSpec, GridSpecBase, entries
 
 __all__ = [
     "DEFAULT_DELTA_RANGE",
@@ -41,7 +41,6 @@ __all__ = [
     "sweep_deltas",
 ]
 
-MAX_POINTS_PER_AXIS = 2001
 MAX_POINTS = 1000
 #: The paper's range of delta = l2/l1 (1 <= delta <= delta_max = 2.5) and its resolution.
 DEFAULT_DELTA_RANGE = (1.0, 2.5)
@@ -59,19 +58,6 @@ WorkingMode = tuple[Literal[1, -1], Literal[1, -1]]
 Point = tuple[float, float]
 
 
-class _Spec(BaseModel):
-    model_config = ConfigDict(extra="forbid", frozen=True, allow_inf_nan=False)
-
-
-def _entries(count: int, what: str) -> BeforeValidator:
-    """Reject a list of the wrong length with one message instead of per-item errors."""
-
-    def check(value: Any) -> Any:
-        if isinstance(value, list | tuple) and len(value) != count:
-            raise ValueError(f"{what}, not {len(value)}")
-        return value
-
-    return BeforeValidator(check)
 
 
 def _signs(value: Any) -> Any:
@@ -85,7 +71,7 @@ def _signs(value: Any) -> Any:
     return value
 
 
-class GridSpec(_Spec):
+class GridSpec(GridSpecBase):
     """The evaluation grid: ``points_per_axis`` nodes on each axis, ends included."""
 
     bounds: tuple[float, float, float, float] | None = Field(
@@ -96,25 +82,6 @@ class GridSpec(_Spec):
             "|x|, |y| <= 3e (telescopic legs); |x| <= 2 l2, |y| <= l2 (linear drives)."
         ),
     )
-    points_per_axis: int = Field(
-        201,
-        ge=2,
-        le=MAX_POINTS_PER_AXIS,
-        description=f"Grid nodes per axis (2..{MAX_POINTS_PER_AXIS}); the grid has N² nodes.",
-    )
-
-    @field_validator("bounds")
-    @classmethod
-    def _ordered_bounds(
-        cls, bounds: tuple[float, float, float, float] | None
-    ) -> tuple[float, float, float, float] | None:
-        if bounds is not None:
-            x_min, x_max, y_min, y_max = bounds
-            if not x_min < x_max:
-                raise ValueError(f"bounds: x_min {x_min:g} must be less than x_max {x_max:g}")
-            if not y_min < y_max:
-                raise ValueError(f"bounds: y_min {y_min:g} must be less than y_max {y_max:g}")
-        return bounds
 
 
 _ACTUATION_DESCRIPTION = (
@@ -153,7 +120,7 @@ _PLOTS_DESCRIPTION = (
 )
 
 
-class ConditioningMapSpec(_Spec):
+class ConditioningMapSpec(FrozenSpec):
     """Inputs of ``planar2dof-conditioning-map``: 1/kappa and pressure angles on a grid."""
 
     actuation: Actuation = Field("proximal-arm", description=_ACTUATION_DESCRIPTION)
@@ -238,7 +205,7 @@ _DELTA_DESCRIPTION = (
 )
 
 
-class OptimisationSpec(_Spec):
+class OptimisationSpec(FrozenSpec):
     """Inputs of ``planar2dof-optimisation``: the paper's global design of the proximal-arm
     type (isotropic architecture eq 12, rectangle W_lambda in W_kappa0, index eta eq 13)."""
 
@@ -256,7 +223,7 @@ class OptimisationSpec(_Spec):
         f"{MAX_ASPECT_RATIO:g}; the paper's 4).",
     )
     delta_range: Annotated[
-        tuple[float, float] | None, _entries(2, "delta_range needs two values [lo, hi]")
+        tuple[float, float] | None, entries(2, "delta_range needs two values [lo, hi]")
     ] = Field(None, description=_RANGE_DESCRIPTION)
     delta_step: float | None = Field(None, gt=0, le=MAX_DELTA, description=_STEP_DESCRIPTION)
     delta: float | None = Field(None, ge=MIN_DELTA, le=MAX_DELTA, description=_DELTA_DESCRIPTION)

@@ -13,13 +13,14 @@ from pydantic import (
     AfterValidator,
     BaseModel,
     BeforeValidator,
-    ConfigDict,
     Discriminator,
     Field,
     Tag,
     field_validator,
     model_validator,
 )
+
+from worker.jobs.spec_base import MAX_POINTS_PER_AXIS, FrozenSpec, GridSpecBase
 
 __all__ = [
     "MAX_ORIENTATION_STEP_DEG",
@@ -35,7 +36,6 @@ __all__ = [
     "default_task_labels",
 ]
 
-MAX_POINTS_PER_AXIS = 2001
 MIN_ORIENTATION_STEP_DEG = 0.1
 MAX_ORIENTATION_STEP_DEG = 30.0
 MAX_TASK_POINTS = 1000
@@ -48,9 +48,6 @@ Point = tuple[float, float]
 Length = Annotated[float, Field(gt=0)]
 JointLimitsDeg = tuple[tuple[float, float], tuple[float, float], tuple[float, float]]
 
-
-class _Spec(BaseModel):
-    model_config = ConfigDict(extra="forbid", frozen=True, allow_inf_nan=False)
 
 
 def default_task_labels(count: int) -> tuple[str, ...]:
@@ -66,7 +63,7 @@ def default_task_labels(count: int) -> tuple[str, ...]:
     return tuple(labels)
 
 
-class GridSpec(_Spec):
+class GridSpec(GridSpecBase):
     """The evaluation grid: ``points_per_axis`` nodes on each axis, ends included."""
 
     bounds: tuple[float, float, float, float] | None = Field(
@@ -76,28 +73,9 @@ class GridSpec(_Spec):
             "±1.05·(l1 + l2 + l3) around the base, which holds the whole reachable disk."
         ),
     )
-    points_per_axis: int = Field(
-        201,
-        ge=2,
-        le=MAX_POINTS_PER_AXIS,
-        description=f"Grid nodes per axis (2..{MAX_POINTS_PER_AXIS}); the grid has N² nodes.",
-    )
-
-    @field_validator("bounds")
-    @classmethod
-    def _ordered_bounds(
-        cls, bounds: tuple[float, float, float, float] | None
-    ) -> tuple[float, float, float, float] | None:
-        if bounds is not None:
-            x_min, x_max, y_min, y_max = bounds
-            if not x_min < x_max:
-                raise ValueError(f"bounds: x_min {x_min:g} must be less than x_max {x_max:g}")
-            if not y_min < y_max:
-                raise ValueError(f"bounds: y_min {y_min:g} must be less than y_max {y_max:g}")
-        return bounds
 
 
-class PolylineTrajectory(_Spec):
+class PolylineTrajectory(FrozenSpec):
     """A trajectory through the given vertices, in order, with straight segments."""
 
     points: tuple[Point, ...] = Field(
@@ -122,7 +100,7 @@ class PolylineTrajectory(_Spec):
         return points
 
 
-class PolynomialTrajectory(_Spec):
+class PolynomialTrajectory(FrozenSpec):
     """A trajectory y = a_n x^n + ... + a_0 for x from ``x_start`` to ``x_end``."""
 
     polynomial: tuple[float, ...] = Field(
@@ -217,7 +195,7 @@ def _check_joint_limits(limits: JointLimitsDeg | None) -> JointLimitsDeg | None:
     return limits
 
 
-class _TaskSpec(_Spec):
+class _TaskSpec(FrozenSpec):
     """Fields shared by both jobs."""
 
     joint_limits_deg: Annotated[
@@ -269,14 +247,14 @@ class _TaskSpec(_Spec):
         return default_task_labels(len(self.task_points or ()))
 
 
-class _ArmSpec(_Spec):
+class _ArmSpec(FrozenSpec):
     links: Annotated[
         tuple[Length, Length, Length],
         _three_entries("links needs three lengths [l1, l2, l3]"),
     ] = Field(..., description=_LINKS_DESCRIPTION)
 
 
-class _DesignSpec(_Spec):
+class _DesignSpec(FrozenSpec):
     l3: float = Field(
         ...,
         gt=0,

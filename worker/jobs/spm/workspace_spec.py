@@ -8,9 +8,11 @@ literally). Angles are in degrees; the kinematics converts to radians.
 
 from __future__ import annotations
 
-from typing import Annotated, Any, Literal
+from typing import Annotated, Literal
 
-from pydantic import BaseModel, BeforeValidator, ConfigDict, Field, field_validator
+from pydantic import Field, field_validator
+
+from worker.jobs.spec_base import FrozenSpec, entries
 
 __all__ = [
     "FULL_TURN_DEG",
@@ -38,21 +40,6 @@ GammaDeg = Annotated[float, Field(ge=0, lt=180)]
 Branch = Literal[-1, 1]
 
 
-class FrozenSpec(BaseModel):
-    """Frozen, ``extra="forbid"``, finite floats only: the base of every spm input model."""
-
-    model_config = ConfigDict(extra="forbid", frozen=True, allow_inf_nan=False)
-
-
-def entries(count: int, what: str) -> BeforeValidator:
-    """Reject a list of the wrong length with one message instead of per-item errors."""
-
-    def check(value: Any) -> Any:
-        if isinstance(value, list | tuple) and len(value) != count:
-            raise ValueError(f"{what}, not {len(value)}")
-        return value
-
-    return BeforeValidator(check)
 
 
 class SampleCounts(FrozenSpec):
