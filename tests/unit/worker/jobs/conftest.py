@@ -29,7 +29,7 @@ def ctx() -> RecordingContext:
     return RecordingContext()
 
 
-def _unrendered(fig: Figure, stem: str, title: str) -> tuple[Artifact, Artifact]:
+def unrendered_artifacts(fig: Figure, stem: str, title: str) -> tuple[Artifact, Artifact]:
     """Stands in for figure_artifacts: the figure is built (so its inputs are checked by
     the plotting code) but not rendered, which is most of a job's run time."""
     assert isinstance(fig, Figure)
@@ -44,5 +44,5 @@ def fast_figures(monkeypatch: pytest.MonkeyPatch) -> None:
     """Skip PNG/SVG rendering in tests that check numbers, not plots."""
     from worker.jobs.planar3r import dexterity_map, synthesis
 
-    monkeypatch.setattr(dexterity_map, "figure_artifacts", _unrendered)
-    monkeypatch.setattr(synthesis, "figure_artifacts", _unrendered)
+    monkeypatch.setattr(dexterity_map, "figure_artifacts", unrendered_artifacts)
+    monkeypatch.setattr(synthesis, "figure_artifacts", unrendered_artifacts)

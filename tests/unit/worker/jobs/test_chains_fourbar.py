@@ -6,10 +6,9 @@ import json
 from typing import Any
 
 import pytest
-from matplotlib.figure import Figure
 
-from tests.unit.worker.jobs.conftest import RecordingContext
-from worker.contract import Artifact, JobOutcome
+from tests.unit.worker.jobs.conftest import RecordingContext, unrendered_artifacts
+from worker.contract import JobOutcome
 from worker.jobs.chains import FOURBAR_GRASHOF, fourbar
 from worker.jobs.chains.examples import FOURBAR_GRASHOF_EXAMPLES
 from worker.jobs.chains.specs import FourBarGrashofSpec
@@ -20,15 +19,10 @@ RESULT_KEYS = {
 }  # fmt: skip
 
 
-def unrendered(fig: Figure, stem: str, title: str) -> tuple[Artifact, Artifact]:
-    assert isinstance(fig, Figure)
-    return (Artifact(f"{stem}.png", "image/png", b"", title),
-            Artifact(f"{stem}.svg", "image/svg+xml", b"", title))  # fmt: skip
-
 
 @pytest.fixture(autouse=True)
 def fast_fourbar_figures(monkeypatch: pytest.MonkeyPatch) -> None:
-    monkeypatch.setattr(fourbar, "figure_artifacts", unrendered)
+    monkeypatch.setattr(fourbar, "figure_artifacts", unrendered_artifacts)
 
 
 def run(**inputs: Any) -> JobOutcome:

@@ -6,10 +6,9 @@ import json
 from typing import Any
 
 import pytest
-from matplotlib.figure import Figure
 
-from tests.unit.worker.jobs.conftest import RecordingContext
-from worker.contract import Artifact, JobOutcome
+from tests.unit.worker.jobs.conftest import RecordingContext, unrendered_artifacts
+from worker.contract import JobOutcome
 from worker.jobs.chains import CHAIN_PARALLELISM, parallelism
 from worker.jobs.chains.examples import CHAIN_PARALLELISM_EXAMPLES, FIG_4A
 from worker.jobs.chains.specs import ChainParallelismSpec
@@ -21,15 +20,10 @@ CHAIN_KEYS = {
 LOOP_KEYS = {"index", "peripheral", "sides", "lengths", "products", "deviations", "Q"}
 
 
-def unrendered(fig: Figure, stem: str, title: str) -> tuple[Artifact, Artifact]:
-    assert isinstance(fig, Figure)
-    return (Artifact(f"{stem}.png", "image/png", b"", title),
-            Artifact(f"{stem}.svg", "image/svg+xml", b"", title))  # fmt: skip
-
 
 @pytest.fixture(autouse=True)
 def fast_chain_figures(monkeypatch: pytest.MonkeyPatch) -> None:
-    monkeypatch.setattr(parallelism, "figure_artifacts", unrendered)
+    monkeypatch.setattr(parallelism, "figure_artifacts", unrendered_artifacts)
 
 
 def run(inputs: dict[str, Any]) -> tuple[JobOutcome, RecordingContext]:

@@ -13,7 +13,7 @@ from typing import Any
 import numpy as np
 import pytest
 
-from tests.unit.worker.jobs.conftest import RecordingContext, _unrendered
+from tests.unit.worker.jobs.conftest import RecordingContext, unrendered_artifacts
 from tests.unit.worker.plotting.test_render import png_pixels, svg_strings
 from worker.contract import JobOutcome
 from worker.jobs.planar2dof import CONDITIONING_MAP, conditioning_map
@@ -51,14 +51,14 @@ SQRT_HALF = math.sqrt(0.5)
 def unrendered_figures() -> Iterator[None]:
     """Figures built (their inputs checked) but not rendered, like ``fast_figures``."""
     with pytest.MonkeyPatch.context() as patch:
-        patch.setattr(conditioning_map, "figure_artifacts", _unrendered)
+        patch.setattr(conditioning_map, "figure_artifacts", unrendered_artifacts)
         yield
 
 
 @pytest.fixture
 def fast_figures(fast_figures: None, monkeypatch: pytest.MonkeyPatch) -> None:
     """The shared fixture, extended to this job's module."""
-    monkeypatch.setattr(conditioning_map, "figure_artifacts", _unrendered)
+    monkeypatch.setattr(conditioning_map, "figure_artifacts", unrendered_artifacts)
 
 
 def run_example(index: int) -> tuple[JobOutcome, RecordingContext]:

@@ -14,7 +14,7 @@ from typing import Any
 import numpy as np
 import pytest
 
-from tests.unit.worker.jobs.conftest import RecordingContext, _unrendered
+from tests.unit.worker.jobs.conftest import RecordingContext, unrendered_artifacts
 from tests.unit.worker.plotting.test_render import png_pixels, svg_strings
 from worker.contract import JobOutcome
 from worker.jobs.planar2dof import OPTIMISATION, optimisation_artifacts
@@ -57,14 +57,14 @@ LENGTH_TOL, AREA_TOL, MEAN_TOL, DELTA_TOL, LIMIT_TOL = 0.002, 0.01, 0.002, 0.05,
 def unrendered_figures() -> Iterator[None]:
     """Figures built (their inputs checked) but not rendered, like ``fast_figures``."""
     with pytest.MonkeyPatch.context() as patch:
-        patch.setattr(optimisation_artifacts, "figure_artifacts", _unrendered)
+        patch.setattr(optimisation_artifacts, "figure_artifacts", unrendered_artifacts)
         yield
 
 
 @pytest.fixture
 def fast_figures(fast_figures: None, monkeypatch: pytest.MonkeyPatch) -> None:
     """The shared fixture, extended to this job's figures."""
-    monkeypatch.setattr(optimisation_artifacts, "figure_artifacts", _unrendered)
+    monkeypatch.setattr(optimisation_artifacts, "figure_artifacts", unrendered_artifacts)
 
 
 def run_example(index: int) -> tuple[JobOutcome, RecordingContext]:

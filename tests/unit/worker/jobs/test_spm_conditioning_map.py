@@ -12,8 +12,8 @@ from typing import Any
 import numpy as np
 import pytest
 
-from tests.unit.worker.jobs.conftest import RecordingContext
-from worker.contract import Artifact, JobOutcome
+from tests.unit.worker.jobs.conftest import RecordingContext, unrendered_artifacts
+from worker.contract import JobOutcome
 from worker.jobs.spm import CONDITIONING_MAP, conditioning_artifacts
 from worker.jobs.spm.examples import CONDITIONING_MAP_EXAMPLES, TABLE_2_GRAPHIC
 from worker.jobs.spm.specs import ConditioningMapSpec
@@ -32,15 +32,11 @@ PLOTS = {f"{stem}.{ext}" for stem in ("inverse_condition_map", "torsion_sweeps")
 ORIENTATIONS = [[0.0, 30.0, 0.0], [10.0, 20.0, 30.0], [35.0, 45.0, 200.0], [250.0, 5.0, -40.0]]
 
 
-def _unrendered(fig: Any, stem: str, title: str) -> tuple[Artifact, Artifact]:
-    return (Artifact(f"{stem}.png", "image/png", b"", title),
-            Artifact(f"{stem}.svg", "image/svg+xml", b"", title))  # fmt: skip
-
 
 @pytest.fixture(scope="module")
 def unrendered() -> Any:
     with pytest.MonkeyPatch.context() as patch:
-        patch.setattr(conditioning_artifacts, "figure_artifacts", _unrendered)
+        patch.setattr(conditioning_artifacts, "figure_artifacts", unrendered_artifacts)
         yield
 
 

@@ -11,8 +11,8 @@ from typing import Any
 import numpy as np
 import pytest
 
-from tests.unit.worker.jobs.conftest import RecordingContext
-from worker.contract import Artifact, JobOutcome
+from tests.unit.worker.jobs.conftest import RecordingContext, unrendered_artifacts
+from worker.contract import JobOutcome
 from worker.jobs.spm import DESIGN_SPACE, design_space
 from worker.jobs.spm.examples import DESIGN_SPACE_EXAMPLES, FIG_5_F_MAX, FIG_5_F_MIN
 from worker.jobs.spm.specs import DesignSpaceSpec
@@ -23,15 +23,11 @@ RESULT_KEYS = {"workspace", "identical_platforms", "gamma_deg", "method", "desig
                "index_map", "sampling", "data"}  # fmt: skip
 
 
-def _unrendered(fig: Any, stem: str, title: str) -> tuple[Artifact, Artifact]:
-    return (Artifact(f"{stem}.png", "image/png", b"", title),
-            Artifact(f"{stem}.svg", "image/svg+xml", b"", title))  # fmt: skip
-
 
 @pytest.fixture(scope="module")
 def unrendered() -> Any:
     with pytest.MonkeyPatch.context() as patch:
-        patch.setattr(design_space, "figure_artifacts", _unrendered)
+        patch.setattr(design_space, "figure_artifacts", unrendered_artifacts)
         yield
 
 

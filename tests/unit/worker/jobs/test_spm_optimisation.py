@@ -11,8 +11,8 @@ from typing import Any
 import numpy as np
 import pytest
 
-from tests.unit.worker.jobs.conftest import RecordingContext
-from worker.contract import Artifact, JobOutcome
+from tests.unit.worker.jobs.conftest import RecordingContext, unrendered_artifacts
+from worker.contract import JobOutcome
 from worker.jobs.spm import OPTIMISATION, optimisation_artifacts
 from worker.jobs.spm.examples import EXAMPLE_3_WORKSPACE, OPTIMISATION_EXAMPLES
 from worker.jobs.spm.optimisation_spec import OptimisationSpec
@@ -32,15 +32,11 @@ PLOTS = {f"{stem}.{ext}" for stem in ("index_map", "starts", "torsion_sweeps")
 ANGLE, INDEX = 1.0, 0.005
 
 
-def _unrendered(fig: Any, stem: str, title: str) -> tuple[Artifact, Artifact]:
-    return (Artifact(f"{stem}.png", "image/png", b"", title),
-            Artifact(f"{stem}.svg", "image/svg+xml", b"", title))  # fmt: skip
-
 
 @pytest.fixture(scope="module")
 def unrendered() -> Any:
     with pytest.MonkeyPatch.context() as patch:
-        patch.setattr(optimisation_artifacts, "figure_artifacts", _unrendered)
+        patch.setattr(optimisation_artifacts, "figure_artifacts", unrendered_artifacts)
         yield
 
 
