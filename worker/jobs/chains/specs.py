@@ -65,7 +65,6 @@ SideRef = Annotated[
 ChainName = Annotated[str, StringConstraints(min_length=1, max_length=40)]
 
 
-
 def _counted(what: str, low: int, high: int) -> Any:
     """Check a list's length before its items, with one message, and publish the bounds.
 

@@ -51,7 +51,6 @@ from worker.kinematics import planar_parallel as pp
 __all__ = ["ConditioningLimit", "SweepOutcome", "run_optimisation"]
 
 
-
 @dataclass(frozen=True)
 class ConditioningLimit:
     """1/kappa0 and where it comes from: eq (17) maximised at ``delta`` over

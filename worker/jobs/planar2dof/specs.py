@@ -58,8 +58,6 @@ WorkingMode = tuple[Literal[1, -1], Literal[1, -1]]
 Point = tuple[float, float]
 
 
-
-
 def _signs(value: Any) -> Any:
     """working_mode entries must be +1 or -1 (one message for both entries)."""
     if isinstance(value, list | tuple):

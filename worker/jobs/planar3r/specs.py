@@ -49,7 +49,6 @@ Length = Annotated[float, Field(gt=0)]
 JointLimitsDeg = tuple[tuple[float, float], tuple[float, float], tuple[float, float]]
 
 
-
 def default_task_labels(count: int) -> tuple[str, ...]:
     """Spreadsheet-style labels: A, B, ..., Z, AA, AB, ... (``count`` of them)."""
     labels = []

@@ -27,7 +27,6 @@ __all__ = [
 ]
 
 
-
 @dataclass(frozen=True, eq=False)
 class InverseConditionMaps:
     """1/kappa (k, nt, na) over tilt_deg (nt,) x azimuth_deg (na,) at torsions_deg (k,)."""

@@ -40,8 +40,6 @@ GammaDeg = Annotated[float, Field(ge=0, lt=180)]
 Branch = Literal[-1, 1]
 
 
-
-
 class SampleCounts(FrozenSpec):
     """How many equal-weight samples along azimuth psi1, tilt psi2 and torsion psi3."""
 

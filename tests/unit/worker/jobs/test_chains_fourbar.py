@@ -19,7 +19,6 @@ RESULT_KEYS = {
 }  # fmt: skip
 
 
-
 @pytest.fixture(autouse=True)
 def fast_fourbar_figures(monkeypatch: pytest.MonkeyPatch) -> None:
     monkeypatch.setattr(fourbar, "figure_artifacts", unrendered_artifacts)

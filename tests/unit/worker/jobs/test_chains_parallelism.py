@@ -20,7 +20,6 @@ CHAIN_KEYS = {
 LOOP_KEYS = {"index", "peripheral", "sides", "lengths", "products", "deviations", "Q"}
 
 
-
 @pytest.fixture(autouse=True)
 def fast_chain_figures(monkeypatch: pytest.MonkeyPatch) -> None:
     monkeypatch.setattr(parallelism, "figure_artifacts", unrendered_artifacts)

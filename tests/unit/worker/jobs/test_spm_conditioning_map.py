@@ -32,7 +32,6 @@ PLOTS = {f"{stem}.{ext}" for stem in ("inverse_condition_map", "torsion_sweeps")
 ORIENTATIONS = [[0.0, 30.0, 0.0], [10.0, 20.0, 30.0], [35.0, 45.0, 200.0], [250.0, 5.0, -40.0]]
 
 
-
 @pytest.fixture(scope="module")
 def unrendered() -> Any:
     with pytest.MonkeyPatch.context() as patch:

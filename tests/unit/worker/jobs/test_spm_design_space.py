@@ -23,7 +23,6 @@ RESULT_KEYS = {"workspace", "identical_platforms", "gamma_deg", "method", "desig
                "index_map", "sampling", "data"}  # fmt: skip
 
 
-
 @pytest.fixture(scope="module")
 def unrendered() -> Any:
     with pytest.MonkeyPatch.context() as patch:

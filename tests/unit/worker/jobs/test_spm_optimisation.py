@@ -32,7 +32,6 @@ PLOTS = {f"{stem}.{ext}" for stem in ("index_map", "starts", "torsion_sweeps")
 ANGLE, INDEX = 1.0, 0.005
 
 
-
 @pytest.fixture(scope="module")
 def unrendered() -> Any:
     with pytest.MonkeyPatch.context() as patch:
