@@ -12,6 +12,7 @@ from fastapi.responses import JSONResponse
 
 from service.config import ServiceSettings
 from service.errors import install_error_handlers, problem_response
+from service.job_watcher import JobWatcher
 from service.problems import PROBLEM_TYPES
 from service.routes import health, jobs, processes
 from worker.dispatch import Dispatcher, make_dispatcher
@@ -60,7 +61,7 @@ def create_app(settings: ServiceSettings | None = None) -> FastAPI:
 
     @asynccontextmanager
     async def lifespan(app: FastAPI) -> AsyncIterator[None]:
-        store = open_store(settings.resolved_store_url())
+        store = open_store(settings.resolved_store_url(), retry_s=settings.store_retry_seconds)
         dispatcher = make_dispatcher(settings, store)
         # With a broker, this process serves the API only; Celery workers run the jobs
         # and a sweeper here re-sends jobs whose worker died.
@@ -72,11 +73,14 @@ def create_app(settings: ServiceSettings | None = None) -> FastAPI:
         app.state.registry = default_registry()
         app.state.pool = pool
         app.state.dispatcher = dispatcher
+        app.state.watcher = JobWatcher(store)
+        app.state.watcher.start()
         if pool is not None:
             pool.start()
         try:
             yield
         finally:
+            await app.state.watcher.stop()
             if pool is not None:
                 pool.stop()
             if sweeper is not None:

@@ -79,7 +79,7 @@ def _worker(args: argparse.Namespace) -> None:
 
         run_celery_worker(settings, (args.log_level or "info").upper())
         return
-    store = open_store(settings.resolved_store_url())
+    store = open_store(settings.resolved_store_url(), retry_s=settings.store_retry_seconds)
     pool = WorkerPool(settings, store)
     stop = threading.Event()
     signal.signal(signal.SIGTERM, lambda *_: stop.set())

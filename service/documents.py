@@ -7,8 +7,9 @@ from datetime import datetime
 from typing import Any
 
 from worker.contract import JobRecord, JobStatus
+from worker.store.base import StoredArtifact
 
-__all__ = ["job_href", "results_document", "status_document"]
+__all__ = ["artifact_headers", "job_href", "results_document", "status_document"]
 
 
 def _iso(value: datetime | None) -> str | None:
@@ -22,14 +23,28 @@ def job_href(job_id: str) -> str:
 def status_document(job: JobRecord) -> dict[str, Any]:
     """``GET /v1/jobs/{jobID}``: where the job is, with links."""
     links = [
-        {"href": job_href(job.job_id), "rel": "self", "type": "application/json",
-         "title": "this status document"},
-        {"href": f"/v1/processes/{job.process_id}", "rel": "process",
-         "type": "application/json", "title": "the process description"},
+        {
+            "href": job_href(job.job_id),
+            "rel": "self",
+            "type": "application/json",
+            "title": "this status document",
+        },
+        {
+            "href": f"/v1/processes/{job.process_id}",
+            "rel": "process",
+            "type": "application/json",
+            "title": "the process description",
+        },
     ]
     if job.status is JobStatus.SUCCESSFUL:
-        links.append({"href": f"{job_href(job.job_id)}/results", "rel": "results",
-                      "type": "application/json", "title": "the result document"})
+        links.append(
+            {
+                "href": f"{job_href(job.job_id)}/results",
+                "rel": "results",
+                "type": "application/json",
+                "title": "the result document",
+            }
+        )
     doc: dict[str, Any] = {
         "jobID": job.job_id,
         "processID": job.process_id,
@@ -60,13 +75,42 @@ def results_document(job: JobRecord, result: Mapping[str, Any]) -> dict[str, Any
         "processID": job.process_id,
         "result": dict(result),
         "artifacts": [
-            {"name": a.name, "media_type": a.media_type, "title": a.title, "size": a.size,
-             "href": f"{base}/results/{a.name}"}
+            {
+                "name": a.name,
+                "media_type": a.media_type,
+                "title": a.title,
+                "size": a.size,
+                "href": f"{base}/results/{a.name}",
+            }
             for a in job.artifacts
         ],
         "links": [
             {"href": f"{base}/results", "rel": "self", "type": "application/json"},
-            {"href": base, "rel": "up", "type": "application/json",
-             "title": "the job's status"},
+            {"href": base, "rel": "up", "type": "application/json", "title": "the job's status"},
         ],
     }
+
+
+#: Media types a browser must not render in place (data files download).
+_DOWNLOADS = frozenset({"text/csv", "application/x-npz", "application/octet-stream"})
+
+#: An SVG is served with a policy that lets it style itself and nothing more: no
+#: scripts, no requests, sandboxed.
+SVG_POLICY = "default-src 'none'; style-src 'unsafe-inline'; sandbox"
+
+
+def artifact_headers(stored: StoredArtifact) -> dict[str, str]:
+    """The headers of an artifact download: a strong ETag (the bytes' SHA-256),
+    ``Cache-Control: private`` (it can be deleted, so never ``immutable``), data files
+    as attachments, SVG under a script-free policy."""
+    info = stored.info
+    disposition = "attachment" if info.media_type in _DOWNLOADS else "inline"
+    headers = {
+        "ETag": f'"{stored.etag}"',
+        "Cache-Control": "private, no-cache",
+        "Content-Disposition": f'{disposition}; filename="{info.name}"',
+        "X-Content-Type-Options": "nosniff",
+    }
+    if info.media_type == "image/svg+xml":
+        headers["Content-Security-Policy"] = SVG_POLICY
+    return headers

@@ -12,7 +12,10 @@
     ├── ResultNotReady              the job has not finished yet
     ├── JobFailed                   the job finished without a result
     ├── JobDismissed                the job was dismissed (cancelled)
-    └── StoreUnavailable            the job store cannot be reached
+    └── StoreUnavailable            the job store cannot be reached (or stays locked)
+        ├── StorageFull             the store's disk is full
+        └── StorageError            the store cannot read or write its files (corrupt,
+                                    read-only, I/O error)
 
 Each class's docstring is its default message.  The HTTP layer maps each class to a
 status code and an RFC 9457 problem type in exactly one place (``service.errors``).
@@ -35,6 +38,8 @@ __all__ = [
     "NoSuchJob",
     "NoSuchProcess",
     "ResultNotReady",
+    "StorageError",
+    "StorageFull",
     "StoreUnavailable",
 ]
 
@@ -97,3 +102,11 @@ class JobDismissed(DexlabError):
 
 class StoreUnavailable(DexlabError):
     """The job store cannot be reached."""
+
+
+class StorageFull(StoreUnavailable):
+    """The job store's disk is full; nothing more can be written."""
+
+
+class StorageError(StoreUnavailable):
+    """The job store cannot read or write its files (corrupt, read-only, I/O error)."""

@@ -3,24 +3,51 @@
 When a process dies (killed, crashed, or stopped itself after a dismissal or a time
 limit) the supervisor expires the leases it held, so its job is retried at once by the
 next claim rather than after the lease runs out, and starts a new process in its slot.
+A process that shows no sign of life for a lease (frozen, e.g. SIGSTOPped, perhaps
+holding SQLite's write lock) is killed.  A process that keeps dying at start-up (a
+broken store) is restarted after growing pauses (capped), and the log says why.
 """
 
 from __future__ import annotations
 
+import contextlib
 import logging
 import multiprocessing
 import os
+import signal
 import threading
 import time
+from dataclasses import dataclass, field
 from multiprocessing.process import BaseProcess
+from typing import Any
 
-from worker.runner import worker_id_for, worker_main
+from worker.errors import StoreUnavailable
+from worker.runner import EXIT_STARTUP, worker_id_for, worker_main
 from worker.settings import WorkerSettings
 from worker.store.base import JobStore
 
 __all__ = ["WorkerPool"]
 
 log = logging.getLogger("dexlab.pool")
+
+#: A process that dies sooner than this after its start died "at start-up".
+EARLY_DEATH_S = 10.0
+#: Restart pauses after repeated early deaths: 0.5 s, 1 s, 2 s, ... at most 30 s.
+FIRST_BACKOFF_S = 0.5
+MAX_BACKOFF_S = 30.0
+
+
+@dataclass
+class _Slot:
+    """One place in the pool: its process, when it started, its sign of life."""
+
+    proc: BaseProcess | None = None
+    started: float = 0.0
+    liveness: Any = None
+    early_deaths: int = 0
+    next_start: float = 0.0
+    restarts: int = 0
+    unreleased: list[str] = field(default_factory=list)
 
 
 class WorkerPool:
@@ -30,8 +57,7 @@ class WorkerPool:
         self.settings = settings
         self.store = store
         self._ctx = multiprocessing.get_context("spawn")
-        self._slots: list[BaseProcess | None] = [None] * settings.workers
-        self._restarts = [0] * settings.workers
+        self._slots = [_Slot() for _ in range(settings.workers)]
         self._lock = threading.Lock()
         self._stopping = threading.Event()
         self._monitor: threading.Thread | None = None
@@ -39,8 +65,8 @@ class WorkerPool:
     # -- lifecycle ------------------------------------------------------------------
     def start(self) -> None:
         with self._lock:
-            for slot in range(len(self._slots)):
-                self._slots[slot] = self._spawn(slot)
+            for index in range(len(self._slots)):
+                self._spawn(index)
         self._monitor = threading.Thread(target=self._watch, name="dexlab-pool", daemon=True)
         self._monitor.start()
         log.info("worker pool started with %d process(es)", len(self._slots))
@@ -50,7 +76,7 @@ class WorkerPool:
         if self._monitor is not None:
             self._monitor.join(timeout=5.0)
         with self._lock:
-            procs = [p for p in self._slots if p is not None]
+            procs = [s.proc for s in self._slots if s.proc is not None]
             for proc in procs:
                 if proc.is_alive():
                     proc.terminate()  # SIGTERM: finish the current job, then exit
@@ -60,61 +86,117 @@ class WorkerPool:
                 if proc.is_alive():
                     proc.kill()
                     proc.join(timeout=5.0)
-                self._forget(proc)
-            self._slots = [None] * len(self._slots)
+                self._release(worker_id_for(proc.pid) if proc.pid else None)
+            for slot in self._slots:
+                slot.proc = None
         log.info("worker pool stopped")
 
     # -- state ----------------------------------------------------------------------
     def pids(self) -> list[int]:
         with self._lock:
-            return [p.pid for p in self._slots if p is not None and p.pid is not None]
+            return [s.proc.pid for s in self._slots if s.proc is not None and s.proc.pid]
 
     def alive(self) -> int:
         with self._lock:
-            return sum(1 for p in self._slots if p is not None and p.is_alive())
+            return sum(1 for s in self._slots if s.proc is not None and s.proc.is_alive())
 
     @property
     def size(self) -> int:
         return len(self._slots)
 
     # -- internals ------------------------------------------------------------------
-    def _spawn(self, slot: int) -> BaseProcess:
+    def _spawn(self, index: int) -> None:
+        slot = self._slots[index]
+        slot.liveness = self._ctx.Value("d", 0.0, lock=False)
         proc = self._ctx.Process(
             target=worker_main,
-            args=(self.settings.model_dump(mode="json"), os.getpid()),
-            name=f"dexlab-worker-{slot}",
+            args=(self.settings.model_dump(mode="json"), os.getpid(), slot.liveness),
+            name=f"dexlab-worker-{index}",
             daemon=False,
         )
         proc.start()
-        log.info("started worker process %s in slot %d", proc.pid, slot)
-        return proc
+        slot.proc = proc
+        slot.started = time.monotonic()
+        log.info("started worker process %s in slot %d", proc.pid, index)
 
-    def _forget(self, proc: BaseProcess) -> None:
-        if proc.pid is None:
-            return
-        worker_id = worker_id_for(proc.pid)
-        expired = self.store.expire_leases_of(worker_id)
-        self.store.unregister_worker(worker_id)
+    def _release(self, worker_id: str | None) -> bool:
+        """Expire the leases a dead process held; False if the store did not answer."""
+        if worker_id is None:
+            return True
+        try:
+            expired = self.store.expire_leases_of(worker_id)
+            self.store.unregister_worker(worker_id)
+        except StoreUnavailable as exc:
+            log.warning("could not release the leases of %s yet: %s", worker_id, exc)
+            return False
         if expired:
-            log.warning("worker %s died holding %d job(s); they will be retried", worker_id,
-                        expired)
+            log.warning(
+                "worker %s died holding %d job(s); they will be retried", worker_id, expired
+            )
+        return True
+
+    def _kill_if_frozen(self, index: int, slot: _Slot) -> None:
+        proc = slot.proc
+        if proc is None or proc.pid is None or slot.liveness is None:
+            return
+        last = float(slot.liveness.value)
+        reference = last if last > 0 else None
+        silent = (
+            time.time() - reference if reference is not None else (time.monotonic() - slot.started)
+        )
+        if silent > max(self.settings.lease_seconds, 2.0):
+            log.error(
+                "worker process %s in slot %d showed no sign of life for %.1f s "
+                "(frozen?); killing it",
+                proc.pid,
+                index,
+                silent,
+            )
+            with contextlib.suppress(ProcessLookupError):
+                os.kill(proc.pid, signal.SIGKILL)
+
+    def _on_exit(self, index: int, slot: _Slot) -> None:
+        proc = slot.proc
+        assert proc is not None
+        lived = time.monotonic() - slot.started
+        early = lived < EARLY_DEATH_S
+        slot.early_deaths = slot.early_deaths + 1 if early else 0
+        slot.restarts += 1
+        if proc.pid is not None:
+            slot.unreleased.append(worker_id_for(proc.pid))
+        pause = 0.0
+        if slot.early_deaths > 1:
+            pause = min(FIRST_BACKOFF_S * 2 ** (slot.early_deaths - 2), MAX_BACKOFF_S)
+        why = (
+            "could not start (see its log)"
+            if proc.exitcode == EXIT_STARTUP
+            else (f"exited with code {proc.exitcode} after {lived:.1f} s")
+        )
+        if pause:
+            log.error(
+                "worker process %s in slot %d %s; %d early deaths in a row, next start in %.1f s",
+                proc.pid,
+                index,
+                why,
+                slot.early_deaths,
+                pause,
+            )
+        else:
+            log.warning("worker process %s in slot %d %s", proc.pid, index, why)
+        slot.proc = None
+        slot.next_start = time.monotonic() + pause
 
     def _watch(self) -> None:
         while not self._stopping.wait(0.2):
             with self._lock:
                 if self._stopping.is_set():
                     return
-                for slot, proc in enumerate(self._slots):
-                    if proc is None or proc.is_alive():
+                for index, slot in enumerate(self._slots):
+                    if slot.proc is not None and slot.proc.is_alive():
+                        self._kill_if_frozen(index, slot)
                         continue
-                    log.warning(
-                        "worker process %s in slot %d exited with code %s",
-                        proc.pid, slot, proc.exitcode,
-                    )
-                    try:
-                        self._forget(proc)
-                    except Exception:  # the store may be briefly unavailable; retry later
-                        log.exception("could not release the leases of process %s", proc.pid)
-                        continue
-                    self._restarts[slot] += 1
-                    self._slots[slot] = self._spawn(slot)
+                    if slot.proc is not None:
+                        self._on_exit(index, slot)
+                    slot.unreleased = [w for w in slot.unreleased if not self._release(w)]
+                    if slot.proc is None and time.monotonic() >= slot.next_start:
+                        self._spawn(index)

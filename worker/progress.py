@@ -2,18 +2,22 @@
 
 from __future__ import annotations
 
+import logging
 import time
 
 from worker.store.base import JobStore
 
 __all__ = ["StoreProgress"]
 
+log = logging.getLogger("dexlab.worker")
+
 
 class StoreProgress:
     """A :class:`worker.contract.JobContext` writing progress to the store.
 
     Writes are throttled to one every ``min_interval_s`` (the final 100 always goes
-    through) and fenced by the attempt's lease token.
+    through) and fenced by the attempt's lease token.  They are best-effort: a store
+    that is locked or down loses a progress update, never the job.
     """
 
     def __init__(
@@ -33,6 +37,9 @@ class StoreProgress:
             return
         if percent < self._last_percent:
             percent = self._last_percent  # progress never goes backwards
-        self._store.report_progress(self._job_id, self._token, percent, message)
+        try:
+            self._store.report_progress(self._job_id, self._token, percent, message)
+        except Exception as exc:  # best-effort: the next report tries again
+            log.warning("job %s: progress not recorded (%s)", self._job_id, exc)
         self._last_write = now
         self._last_percent = percent

@@ -8,20 +8,23 @@ a fresh process in its place.
 
 from __future__ import annotations
 
+import contextlib
 import logging
 import os
 import signal
 import socket
+import sys
 import threading
 import time
-import traceback
 from typing import Any
 
 from pydantic import ValidationError
 
 from worker.contract import JobStatus
+from worker.errors import StoreUnavailable
 from worker.processes import ProcessRegistry, default_registry
 from worker.progress import StoreProgress
+from worker.result_commit import commit_outcome, error_document, record_failure
 from worker.settings import WorkerSettings
 from worker.store import open_store
 from worker.store.base import Claim, JobStore
@@ -68,24 +71,18 @@ class AttemptGuard(threading.Thread):
         interval = self._settings.heartbeat_seconds
         while not self._done.wait(max(0.05, min(interval, self._deadline - time.time()))):
             if time.time() >= self._deadline:
-                self._store.fail(
-                    job.job_id,
-                    self._claim.lease_token,
-                    {
-                        "type": "time-limit-exceeded",
-                        "title": "Time limit exceeded",
-                        "detail": (
-                            f"Attempt {job.attempts} exceeded the job's time limit of "
-                            f"{job.time_limit_s:g} s and was stopped."
-                        ),
-                    },
+                self._stop_for_time_limit()
+            try:
+                ack = self._store.heartbeat(
+                    job.job_id, self._claim.lease_token, self._settings.lease_seconds
                 )
-                log.warning("job %s exceeded its time limit; stopping", job.job_id)
-                os._exit(EXIT_TIME_LIMIT)
-            ack = self._store.heartbeat(
-                job.job_id, self._claim.lease_token, self._settings.lease_seconds
-            )
-            self._store.worker_heartbeat(self._worker_id)
+            except Exception as exc:  # the store is down or locked: keep guarding
+                log.warning("job %s: heartbeat failed (%s); still guarding", job.job_id, exc)
+                continue
+            try:
+                self._store.worker_heartbeat(self._worker_id)
+            except Exception as exc:
+                log.warning("worker %s: heartbeat failed (%s)", self._worker_id, exc)
             if not ack.owner:
                 dismissed = ack.status is JobStatus.DISMISSED
                 log.warning(
@@ -94,6 +91,23 @@ class AttemptGuard(threading.Thread):
                     "was dismissed" if dismissed else "is no longer ours",
                 )
                 os._exit(EXIT_DISMISSED if dismissed else EXIT_LEASE_LOST)
+
+    def _stop_for_time_limit(self) -> None:
+        job = self._claim.job
+        error = {
+            "type": "time-limit-exceeded",
+            "title": "Time limit exceeded",
+            "detail": (
+                f"Attempt {job.attempts} exceeded the job's time limit of "
+                f"{job.time_limit_s:g} s and was stopped."
+            ),
+        }
+        try:
+            self._store.fail(job.job_id, self._claim.lease_token, error)
+        except Exception:  # the lease lapses and the next attempt meets the limit again
+            log.exception("job %s: could not record the time limit", job.job_id)
+        log.warning("job %s exceeded its time limit; stopping", job.job_id)
+        os._exit(EXIT_TIME_LIMIT)
 
 
 class WorkerLoop:
@@ -112,60 +126,74 @@ class WorkerLoop:
         self._stop.set()
 
     def run(self, parent_pid: int | None = None) -> None:
-        self.store.register_worker(self.worker_id, socket.gethostname(), os.getpid())
+        if not self._register():
+            return
         last_beat = time.monotonic()
+        trouble = _Backoff()
         try:
             while not self._stop.is_set():
                 if parent_pid is not None and os.getppid() != parent_pid:
                     log.warning("parent process went away; worker %s exits", self.worker_id)
                     return
-                if time.monotonic() - last_beat >= self.settings.heartbeat_seconds:
-                    self.store.worker_heartbeat(self.worker_id)
-                    last_beat = time.monotonic()
-                claim = self.store.claim_next(self.worker_id, self.settings.lease_seconds)
+                try:
+                    if time.monotonic() - last_beat >= self.settings.heartbeat_seconds:
+                        self.store.worker_heartbeat(self.worker_id)
+                        last_beat = time.monotonic()
+                    claim = self.store.claim_next(self.worker_id, self.settings.lease_seconds)
+                except StoreUnavailable as exc:
+                    log.warning("worker %s: the store is unavailable (%s)", self.worker_id, exc)
+                    self._stop.wait(trouble.next_pause())
+                    continue
+                trouble.reset()
                 if claim is None:
                     self._stop.wait(self.settings.poll_seconds)
                     continue
                 self.execute(claim)
         finally:
-            self.store.unregister_worker(self.worker_id)
+            with contextlib.suppress(StoreUnavailable):
+                self.store.unregister_worker(self.worker_id)
+
+    def _register(self) -> bool:
+        """Register with the store, waiting out store trouble; False if told to stop."""
+        trouble = _Backoff()
+        while not self._stop.is_set():
+            try:
+                self.store.register_worker(self.worker_id, socket.gethostname(), os.getpid())
+                return True
+            except StoreUnavailable as exc:
+                log.warning("worker %s cannot register yet: %s", self.worker_id, exc)
+                self._stop.wait(trouble.next_pause())
+        return False
+
+    @property
+    def _give_up_after_s(self) -> float:
+        """How long a finished attempt keeps trying to commit through store trouble."""
+        return 2.0 * self.settings.lease_seconds
 
     def execute(self, claim: Claim) -> None:
         job = claim.job
-        token = claim.lease_token
         log.info("worker %s runs job %s (attempt %d)", self.worker_id, job.job_id, job.attempts)
         deadline = time.time() + job.time_limit_s
         guard = AttemptGuard(self.store, claim, self.settings, self.worker_id, deadline)
         guard.start()
-        try:
+        try:  # the guard renews the lease until the outcome is committed
             outcome = self._run_job(claim)
+            if outcome is not None:
+                result, artifacts = outcome
+                commit_outcome(self.store, claim, result, artifacts, self._give_up_after_s)
         finally:
             guard.stop()
-        if outcome is None:
-            return
-        result, artifacts = outcome
-        try:
-            stored = self.store.complete(job.job_id, token, result, artifacts)
-        except (TypeError, ValueError) as exc:  # e.g. a NaN in the result document
-            log.exception("job %s produced an unstorable result", job.job_id)
-            self.store.fail(job.job_id, token, _error_document(exc))
-            return
-        if not stored:
-            log.warning("job %s: result discarded, the attempt no longer owns it", job.job_id)
 
     def _run_job(self, claim: Claim) -> tuple[dict[str, Any], Any] | None:
         job = claim.job
         definition = self.registry.get(job.process_id)
         if definition is None:
-            self.store.fail(
-                job.job_id,
-                claim.lease_token,
-                {
-                    "type": "no-such-process",
-                    "title": "Unknown process",
-                    "detail": f"This worker does not know the process {job.process_id!r}.",
-                },
-            )
+            error = {
+                "type": "no-such-process",
+                "title": "Unknown process",
+                "detail": f"This worker does not know the process {job.process_id!r}.",
+            }
+            record_failure(self.store, claim, error, self._give_up_after_s)
             return None
         try:
             inputs = definition.inputs_model.model_validate(job.inputs)
@@ -174,29 +202,59 @@ class WorkerLoop:
             outcome = definition.run(inputs, context)
         except (Exception, ValidationError) as exc:
             log.exception("job %s raised", job.job_id)
-            self.store.fail(job.job_id, claim.lease_token, _error_document(exc))
+            record_failure(self.store, claim, error_document(exc), self._give_up_after_s)
             return None
         result = dict(outcome.result)
         result["notes"] = list(outcome.notes)
         return result, list(outcome.artifacts)
 
 
-def _error_document(exc: BaseException) -> dict[str, Any]:
-    return {
-        "type": "job-error",
-        "title": "The job raised an error",
-        "detail": f"{type(exc).__name__}: {exc}",
-        "traceback": traceback.format_exception(exc)[-5:],
-    }
+class _Backoff:
+    """Growing, capped pauses while the store is in trouble."""
+
+    def __init__(self, first_s: float = 0.2, cap_s: float = 5.0) -> None:
+        self._first = first_s
+        self._cap = cap_s
+        self._next = first_s
+
+    def next_pause(self) -> float:
+        pause = self._next
+        self._next = min(2 * self._next, self._cap)
+        return pause
+
+    def reset(self) -> None:
+        self._next = self._first
 
 
-def worker_main(settings_data: dict[str, Any], parent_pid: int | None = None) -> None:
+#: Exit code of a worker process that could not start (e.g. the store cannot be opened).
+EXIT_STARTUP = 6
+
+
+def _beat_forever(liveness: Any) -> None:
+    """Tell the supervisor this process runs, twice a second, whatever the job does (a
+    frozen, e.g. SIGSTOPped, process stops beating and is killed)."""
+    while True:
+        liveness.value = time.time()
+        time.sleep(0.5)
+
+
+def worker_main(
+    settings_data: dict[str, Any], parent_pid: int | None = None, liveness: Any = None
+) -> None:
     """Entry point of a pool process (spawned): build resources, then loop."""
     logging.basicConfig(
         level=logging.INFO, format="%(asctime)s %(process)d %(name)s %(levelname)s %(message)s"
     )
+    if liveness is not None:
+        threading.Thread(
+            target=_beat_forever, args=(liveness,), name="liveness", daemon=True
+        ).start()
     settings = WorkerSettings.model_validate(settings_data)
-    store = open_store(settings.resolved_store_url())
+    try:
+        store = open_store(settings.resolved_store_url(), retry_s=settings.store_retry_seconds)
+    except Exception as exc:  # the supervisor backs off and says why
+        log.error("worker process %d cannot open the job store: %s", os.getpid(), exc)
+        sys.exit(EXIT_STARTUP)
     loop = WorkerLoop(settings, store, default_registry())
     signal.signal(signal.SIGTERM, lambda *_: loop.request_stop())
     signal.signal(signal.SIGINT, signal.SIG_IGN)  # the supervisor decides when we stop

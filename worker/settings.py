@@ -34,6 +34,13 @@ class WorkerSettings(BaseSettings):
         15.0, gt=0, description="A claimed job's lease; renewed by heartbeats."
     )
     heartbeat_seconds: float = Field(2.0, gt=0, description="Heartbeat interval of a job.")
+    store_retry_seconds: float = Field(
+        5.0,
+        gt=0,
+        le=120,
+        description="How long a store call retries a locked or unreachable store before "
+        "it gives up (the API then answers 503 with Retry-After).",
+    )
     poll_seconds: float = Field(0.2, gt=0, description="How often an idle worker looks for work.")
     max_attempts: int = Field(3, ge=1, le=20, description="Attempts before a lost job fails.")
     max_time_limit_s: float | None = Field(

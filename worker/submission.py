@@ -6,8 +6,6 @@ documented cost limit.
 
 from __future__ import annotations
 
-import hashlib
-import json
 from collections.abc import Mapping
 from typing import Any
 
@@ -17,6 +15,7 @@ from worker.contract import JobRecord
 from worker.dispatch import Dispatcher
 from worker.errors import CostLimitExceeded, InvalidInputs, NoSuchProcess
 from worker.processes import ProcessDefinition, ProcessRegistry
+from worker.request_hash import request_hash
 from worker.settings import WorkerSettings
 from worker.store.base import JobStore, NewJob
 
@@ -50,14 +49,6 @@ def validate_inputs(definition: ProcessDefinition, raw: Mapping[str, Any]) -> Ba
         raise InvalidInputs(field_errors(exc, ("inputs",))) from exc
 
 
-def request_hash(process_id: str, raw: Mapping[str, Any]) -> str:
-    """A stable hash of a request body, for idempotency."""
-    canonical = json.dumps(
-        {"process": process_id, "inputs": raw}, sort_keys=True, separators=(",", ":")
-    )
-    return hashlib.sha256(canonical.encode()).hexdigest()
-
-
 def submit(
     store: JobStore,
     registry: ProcessRegistry,
@@ -74,9 +65,7 @@ def submit(
     """
     definition = registry.get(process_id)
     if definition is None:
-        raise NoSuchProcess(
-            f"No process {process_id!r}; available: {', '.join(registry.ids())}."
-        )
+        raise NoSuchProcess(f"No process {process_id!r}; available: {', '.join(registry.ids())}.")
     inputs = validate_inputs(definition, raw_inputs)
     cost = definition.cost(inputs)
     if cost > definition.cost_limit:
@@ -88,13 +77,14 @@ def submit(
             cost_limit=definition.cost_limit,
             cost_unit=definition.cost_unit,
         )
+    stored_inputs = inputs.model_dump(mode="json")
     new = NewJob(
         process_id=process_id,
-        inputs=inputs.model_dump(mode="json"),
+        inputs=stored_inputs,
         time_limit_s=settings.time_limit_for(definition.time_limit_s),
         max_attempts=settings.max_attempts,
         idempotency_key=idempotency_key,
-        request_hash=request_hash(process_id, raw_inputs) if idempotency_key else None,
+        request_hash=request_hash(process_id, stored_inputs) if idempotency_key else None,
     )
     job, created = store.create_job(new)
     if created and dispatcher is not None:

@@ -8,7 +8,7 @@ from fastapi import APIRouter
 
 from service.deps import PoolDep, SettingsDep, StoreDep
 from service.errors import problem_response
-from worker.errors import StoreUnavailable
+from worker.errors import StorageError, StorageFull, StoreUnavailable
 
 __all__ = ["router"]
 
@@ -16,16 +16,26 @@ router = APIRouter(prefix="/health", tags=["health"])
 
 
 @router.get("/live", summary="The process answers")
-def live() -> dict[str, Any]:
+async def live() -> dict[str, Any]:
     return {"status": "live"}
 
 
-@router.get("/ready", summary="The store answers and at least one worker is up")
+@router.get(
+    "/ready",
+    summary="The store answers and can be written, and at least one worker is up",
+)
 def ready(store: StoreDep, settings: SettingsDep, pool: PoolDep) -> Any:
     try:
-        store.ping()
+        store.check_storage()  # answers, takes a write lock, has room for results
     except StoreUnavailable as exc:
-        return problem_response("not-ready", detail=exc.detail, store="unavailable")
+        state = (
+            "full"
+            if isinstance(exc, StorageFull)
+            else ("error" if isinstance(exc, StorageError) else "unavailable")
+        )
+        return problem_response(
+            "not-ready", detail=exc.detail, store=state, headers={"Retry-After": "5"}
+        )
     workers = store.live_workers(within_s=3 * settings.heartbeat_seconds + 1.0)
     pool_alive = pool.alive() if pool is not None else None
     local_pool = None if pool is None else {"size": pool.size, "alive": pool_alive}
@@ -37,5 +47,9 @@ def ready(store: StoreDep, settings: SettingsDep, pool: PoolDep) -> Any:
             live_workers=len(workers),
             local_pool=local_pool,
         )
-    return {"status": "ready", "store": "ok", "live_workers": len(workers),
-            "local_pool": local_pool}
+    return {
+        "status": "ready",
+        "store": "ok",
+        "live_workers": len(workers),
+        "local_pool": local_pool,
+    }

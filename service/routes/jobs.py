@@ -2,14 +2,14 @@
 
 from __future__ import annotations
 
-import time
 from typing import Annotated, Any
 
-from fastapi import APIRouter, Query, Response
+from fastapi import APIRouter, Header, Query, Response
+from fastapi.responses import StreamingResponse
 
 from service.deps import StoreDep
-from service.documents import results_document, status_document
-from worker.contract import TERMINAL_STATUSES, JobRecord, JobStatus
+from service.documents import artifact_headers, results_document, status_document
+from worker.contract import JobRecord, JobStatus
 from worker.errors import (
     InvalidInputs,
     JobDismissed,
@@ -17,6 +17,7 @@ from worker.errors import (
     NoSuchArtifact,
     NoSuchJob,
     ResultNotReady,
+    StorageError,
 )
 from worker.store.base import JobStore
 
@@ -43,8 +44,9 @@ def list_jobs(
     try:
         page = store.list_jobs(limit=limit, cursor=cursor, status=status, process_id=process_id)
     except ValueError as exc:
-        raise InvalidInputs([{"field": "cursor", "message": str(exc), "type": "value_error"}],
-                            ) from exc
+        raise InvalidInputs(
+            [{"field": "cursor", "message": str(exc), "type": "value_error"}],
+        ) from exc
     links = [{"href": "/v1/jobs", "rel": "self", "type": "application/json"}]
     if page.next_cursor:
         query = f"limit={limit}&cursor={page.next_cursor}"
@@ -96,35 +98,36 @@ def finished_document(store: JobStore, job: JobRecord) -> dict[str, Any]:
     return results_document(job, result)
 
 
-def wait_for_job(store: JobStore, job_id: str, timeout_s: float) -> JobRecord | None:
-    """The job once it reaches a terminal status, or None after ``timeout_s``."""
-    deadline = time.monotonic() + timeout_s
-    delay = 0.02
-    while True:
-        job = store.get_job(job_id)
-        if job is not None and job.status in TERMINAL_STATUSES:
-            return job
-        if time.monotonic() >= deadline:
-            return None
-        time.sleep(min(delay, max(0.0, deadline - time.monotonic())))
-        delay = min(delay * 1.5, 0.25)
-
-
 @router.get("/{job_id}/results", summary="The result document with links to every artifact")
 def get_results(job_id: str, store: StoreDep) -> dict[str, Any]:
     return finished_document(store, _job(store, job_id))
 
 
 @router.get("/{job_id}/results/{name}", summary="Download one artifact (PNG, SVG, CSV, NPZ)")
-def get_artifact(job_id: str, name: str, store: StoreDep) -> Response:
+def get_artifact(
+    job_id: str,
+    name: str,
+    store: StoreDep,
+    if_none_match: Annotated[str | None, Header(max_length=1000)] = None,
+) -> Response:
     job = _finished(store, job_id)
-    artifact = store.get_artifact(job_id, name)
-    if artifact is None:
+    stored = store.artifact(job_id, name)
+    if stored is None:
         names = ", ".join(a.name for a in job.artifacts)
         raise NoSuchArtifact(f"Job {job_id} has no artifact {name!r}; it has: {names}.")
-    return Response(
-        artifact.data,
-        media_type=artifact.media_type,
-        headers={"Content-Disposition": f'inline; filename="{artifact.name}"',
-                 "Cache-Control": "public, max-age=31536000, immutable"},
-    )
+    headers = artifact_headers(stored)
+    if if_none_match is not None and _etag_matches(if_none_match, headers["ETag"]):
+        return Response(status_code=304, headers=headers)
+    try:
+        chunks = store.artifact_chunks(job_id, stored)
+    except FileNotFoundError as exc:  # dismissed between the two reads
+        raise JobDismissed(f"Job {job_id} was dismissed; it has no results.") from exc
+    except OSError as exc:
+        raise StorageError(f"The artifact {name!r} of job {job_id} cannot be read: {exc}") from exc
+    headers["Content-Length"] = str(stored.info.size)
+    return StreamingResponse(chunks, media_type=stored.info.media_type, headers=headers)
+
+
+def _etag_matches(if_none_match: str, etag: str) -> bool:
+    tags = {t.strip().removeprefix("W/") for t in if_none_match.split(",")}
+    return "*" in tags or etag in tags

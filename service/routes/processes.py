@@ -4,15 +4,22 @@ from __future__ import annotations
 
 from typing import Annotated, Any
 
-from fastapi import APIRouter, Header, Response
+from fastapi import APIRouter, Header, Request, Response
 from fastapi.responses import JSONResponse
 from pydantic import BaseModel, ConfigDict, Field
+from starlette.concurrency import run_in_threadpool
 
 from service.deps import DispatcherDep, RegistryDep, SettingsDep, StoreDep
 from service.documents import job_href, status_document
+from service.job_watcher import JobWatcher
 from service.preferences import requested_wait
-from service.routes.jobs import finished_document, wait_for_job
-from worker.errors import NoSuchProcess
+from service.routes.jobs import finished_document
+from worker.contract import JobRecord
+from worker.dispatch import Dispatcher
+from worker.errors import NoSuchJob, NoSuchProcess
+from worker.processes import ProcessRegistry
+from worker.settings import WorkerSettings
+from worker.store.base import JobStore
 from worker.submission import submit, synchronous_allowed
 
 __all__ = ["router"]
@@ -32,8 +39,12 @@ class ExecuteRequest(BaseModel):
 def list_processes(registry: RegistryDep) -> dict[str, Any]:
     return {
         "processes": [
-            {**d.summary(), "links": [{"href": f"/v1/processes/{d.id}", "rel": "self",
-                                       "type": "application/json"}]}
+            {
+                **d.summary(),
+                "links": [
+                    {"href": f"/v1/processes/{d.id}", "rel": "self", "type": "application/json"}
+                ],
+            }
             for d in registry
         ],
         "links": [{"href": "/v1/processes", "rel": "self", "type": "application/json"}],
@@ -47,8 +58,12 @@ def describe_process(process_id: str, registry: RegistryDep) -> dict[str, Any]:
         raise NoSuchProcess(f"No process {process_id!r}; available: {', '.join(registry.ids())}.")
     doc = definition.describe()
     doc["links"] = [
-        {"href": f"/v1/processes/{process_id}/execution", "rel": "http://www.opengis.net/def/"
-         "rel/ogc/1.0/execute", "type": "application/json", "title": "POST to run it"},
+        {
+            "href": f"/v1/processes/{process_id}/execution",
+            "rel": "http://www.opengis.net/def/rel/ogc/1.0/execute",
+            "type": "application/json",
+            "title": "POST to run it",
+        },
     ]
     return doc
 
@@ -58,9 +73,10 @@ def describe_process(process_id: str, registry: RegistryDep) -> dict[str, Any]:
     status_code=201,
     summary="Submit a job (committed before the response)",
 )
-def execute(
+async def execute(
     process_id: str,
     body: ExecuteRequest,
+    request: Request,
     response: Response,
     store: StoreDep,
     registry: RegistryDep,
@@ -73,19 +89,57 @@ def execute(
 ) -> Any:
     """Queue a job.  With ``Prefer: wait=N`` and a request within the process's
     ``sync_cost_limit``, answer ``200`` with the result document if the job finishes
-    within N seconds (``Preference-Applied: wait=N``); otherwise ``201`` as usual."""
-    job, created = submit(
-        store, registry, settings, process_id, body.inputs, idempotency_key, dispatcher
+    within N seconds (``Preference-Applied: wait=N``); otherwise ``201`` as usual.
+
+    The wait holds no thread: the app's job watcher wakes the request when the job is
+    done."""
+    wait = requested_wait(prefer)
+    job, created, synchronous = await run_in_threadpool(
+        _submit,
+        store,
+        registry,
+        settings,
+        process_id,
+        body.inputs,
+        idempotency_key,
+        dispatcher,
+        wait is not None,
     )
     response.headers["Location"] = job_href(job.job_id)
     if not created:
         response.headers["Idempotent-Replayed"] = "true"
-    wait = requested_wait(prefer)
-    if wait is not None and synchronous_allowed(registry, process_id, body.inputs):
-        finished = wait_for_job(store, job.job_id, wait)
-        if finished is not None:
-            headers = {"Location": response.headers["Location"],
-                       "Preference-Applied": f"wait={wait:g}"}
-            return JSONResponse(finished_document(store, finished), status_code=200,
-                                headers=headers)
+    if wait is not None and synchronous:
+        watcher: JobWatcher = request.app.state.watcher
+        if await watcher.wait(job.job_id, wait):
+            document = await run_in_threadpool(_finished_document, store, job.job_id)
+            headers = {
+                "Location": response.headers["Location"],
+                "Preference-Applied": f"wait={wait:g}",
+            }
+            return JSONResponse(document, status_code=200, headers=headers)
     return status_document(job)
+
+
+def _submit(
+    store: JobStore,
+    registry: ProcessRegistry,
+    settings: WorkerSettings,
+    process_id: str,
+    inputs: dict[str, Any],
+    idempotency_key: str | None,
+    dispatcher: Dispatcher,
+    wants_sync: bool,
+) -> tuple[JobRecord, bool, bool]:
+    """Submit (blocking store work, run in the threadpool); ``(job, created, sync)``."""
+    job, created = submit(
+        store, registry, settings, process_id, inputs, idempotency_key, dispatcher
+    )
+    synchronous = wants_sync and synchronous_allowed(registry, process_id, inputs)
+    return job, created, synchronous
+
+
+def _finished_document(store: JobStore, job_id: str) -> dict[str, Any]:
+    job = store.get_job(job_id)
+    if job is None:  # pragma: no cover - jobs are only deleted by retention, later
+        raise NoSuchJob(f"No job {job_id!r}.")
+    return finished_document(store, job)

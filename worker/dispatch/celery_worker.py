@@ -39,7 +39,7 @@ def _loop_for_this_process(app: Celery) -> WorkerLoop:
     runtime: _ProcessRuntime | None = getattr(app, "dexlab_runtime", None)
     if runtime is None or runtime.pid != os.getpid():
         settings: WorkerSettings = app.dexlab_settings
-        store = open_store(settings.resolved_store_url())
+        store = open_store(settings.resolved_store_url(), retry_s=settings.store_retry_seconds)
         runtime = _ProcessRuntime(os.getpid(), WorkerLoop(settings, store, default_registry()))
         app.dexlab_runtime = runtime
     return runtime.loop
@@ -53,18 +53,22 @@ def run_delivered_job(app: Celery, job_id: str) -> float | None:
         loop.execute(attempt.claim)
         return None
     if attempt.status is JobStatus.RUNNING and attempt.retry_after_s is not None:
-        log.info("job %s is held by a live lease; retrying in %.1f s", job_id,
-                 attempt.retry_after_s)
+        log.info(
+            "job %s is held by a live lease; retrying in %.1f s", job_id, attempt.retry_after_s
+        )
         return attempt.retry_after_s + 0.5
-    log.info("dropping a delivery of job %s (%s)", job_id,
-             attempt.status.value if attempt.status else "unknown job")
+    log.info(
+        "dropping a delivery of job %s (%s)",
+        job_id,
+        attempt.status.value if attempt.status else "unknown job",
+    )
     return None
 
 
 def run_celery_worker(settings: WorkerSettings, log_level: str = "INFO") -> None:
     """``dexlab worker`` with a broker: a Celery worker with ``settings.workers``
     prefork processes, plus a sweeper thread in the main process."""
-    store = open_store(settings.resolved_store_url())
+    store = open_store(settings.resolved_store_url(), retry_s=settings.store_retry_seconds)
     app = create_celery_app(settings)
     dispatcher = CeleryDispatch(settings, store)
     worker_id = worker_id_for(os.getpid())
@@ -78,7 +82,8 @@ def run_celery_worker(settings: WorkerSettings, log_level: str = "INFO") -> None
         f"--loglevel={log_level}",
         f"--queues={settings.queue}",
         "--prefetch-multiplier=1",
-        "-O", "fair",
+        "-O",
+        "fair",
         "--without-gossip",
         "--without-mingle",
         f"--hostname=dexlab-{os.getpid()}@{socket.gethostname()}",

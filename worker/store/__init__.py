@@ -9,6 +9,7 @@ from worker.store.base import (
     JobPage,
     JobStore,
     NewJob,
+    StoredArtifact,
     WorkerInfo,
 )
 
@@ -19,23 +20,26 @@ __all__ = [
     "JobPage",
     "JobStore",
     "NewJob",
+    "StoredArtifact",
     "WorkerInfo",
     "open_store",
 ]
 
 
-def open_store(url: str) -> JobStore:
+def open_store(url: str, retry_s: float = 5.0) -> JobStore:
     """The store behind ``url`` (``sqlite:///path`` or ``postgresql://...``), its schema
-    created or migrated."""
+    created or migrated.  Each call retries transient faults for ``retry_s`` seconds."""
     store: JobStore
     if url.startswith("sqlite:///"):
         from worker.store.sqlite import SqliteJobStore
 
-        store = SqliteJobStore.from_url(url)
+        store = SqliteJobStore.from_url(url, retry_s=retry_s)
     elif url.startswith(("postgresql://", "postgres://", "postgresql+psycopg://")):
         from worker.store.postgres import PostgresJobStore
 
-        store = PostgresJobStore(url.replace("postgresql+psycopg://", "postgresql://", 1))
+        store = PostgresJobStore(
+            url.replace("postgresql+psycopg://", "postgresql://", 1), retry_s=retry_s
+        )
     else:
         raise ValueError(
             "The 'store_url' setting must be a sqlite:/// or postgresql:// URL. "

@@ -7,13 +7,22 @@ running, so a stale or duplicate worker can never overwrite a newer attempt.
 
 from __future__ import annotations
 
-from collections.abc import Mapping, Sequence
+from collections.abc import Iterator, Mapping, Sequence
 from dataclasses import dataclass
 from typing import Any, Protocol
 
-from worker.contract import Artifact, JobRecord, JobStatus
+from worker.contract import Artifact, ArtifactInfo, JobRecord, JobStatus
 
-__all__ = ["Claim", "ClaimAttempt", "HeartbeatAck", "JobPage", "JobStore", "NewJob", "WorkerInfo"]
+__all__ = [
+    "Claim",
+    "ClaimAttempt",
+    "HeartbeatAck",
+    "JobPage",
+    "JobStore",
+    "NewJob",
+    "StoredArtifact",
+    "WorkerInfo",
+]
 
 
 @dataclass(frozen=True)
@@ -67,6 +76,16 @@ class JobPage:
 
 
 @dataclass(frozen=True)
+class StoredArtifact:
+    """A committed artifact: its metadata, the attempt whose bytes it is, and the
+    SHA-256 of those bytes (hex; the HTTP ETag)."""
+
+    info: ArtifactInfo
+    attempt: int
+    etag: str
+
+
+@dataclass(frozen=True)
 class WorkerInfo:
     """A worker process that registered with the store."""
 
@@ -92,6 +111,9 @@ class JobStore(Protocol):
         it raises :class:`worker.errors.IdempotencyConflict`."""
 
     def get_job(self, job_id: str) -> JobRecord | None: ...
+
+    def statuses(self, job_ids: Sequence[str]) -> dict[str, JobStatus]:
+        """The status of each known job among ``job_ids``, in one query."""
 
     def list_jobs(
         self,
@@ -136,8 +158,9 @@ class JobStore(Protocol):
         result: Mapping[str, Any],
         artifacts: Sequence[Artifact],
     ) -> bool:
-        """Store the result and artifacts, then flip the status to successful, in one
-        transaction.  False (and nothing written) if the attempt lost the job."""
+        """Store the artifacts' bytes (outside any transaction, per attempt), then the
+        result and the status in one short fenced transaction.  False (and nothing
+        committed) if the attempt lost the job."""
 
     def fail(self, job_id: str, lease_token: str, error: Mapping[str, Any]) -> bool: ...
 
@@ -149,7 +172,18 @@ class JobStore(Protocol):
 
     def get_result(self, job_id: str) -> Mapping[str, Any] | None: ...
 
-    def get_artifact(self, job_id: str, name: str) -> Artifact | None: ...
+    def artifact(self, job_id: str, name: str) -> StoredArtifact | None:
+        """A successful job's artifact metadata, by name."""
+
+    def artifact_chunks(self, job_id: str, stored: StoredArtifact) -> Iterator[bytes]:
+        """The artifact's bytes, about 1 MiB at a time."""
+
+    def get_artifact(self, job_id: str, name: str) -> Artifact | None:
+        """The whole artifact in memory (small files and tests; the API streams)."""
+
+    def check_storage(self) -> None:
+        """Raise :class:`worker.errors.StoreUnavailable` (or ``StorageFull``) unless the
+        store can take a write now."""
 
     def register_worker(self, worker_id: str, host: str, pid: int) -> None: ...
 

@@ -3,23 +3,36 @@
 Installed with the ``distributed`` extra.  Each thread keeps its own autocommit
 connection; writes run in explicit transactions, rows are locked with
 ``SELECT ... FOR UPDATE`` (claims skip rows another worker has locked), and concurrent
-migrations are serialised by an advisory lock.
+migrations are serialised by an advisory lock.  Artifact bytes live in
+``artifact_chunks`` as ~1 MiB ``bytea`` rows, each written and read by one short
+query, so API and workers on different machines share them without a long
+transaction or a connection held for a whole download.  Sessions set
+``idle_in_transaction_session_timeout``, so a stopped process cannot hold row locks.
 """
 
 from __future__ import annotations
 
+import contextlib
 import threading
 from collections.abc import Iterator, Mapping
 from contextlib import contextmanager
 from typing import Any, ClassVar
 
 from worker.errors import StoreUnavailable
+from worker.store.artifact_files import CHUNK_BYTES
+from worker.store.retry import Fault, retrying
 from worker.store.sql import SqlJobStore
 
 __all__ = ["PostgresJobStore"]
 
 #: Key of the advisory lock held while migrating (any constant unique to dexlab).
 _MIGRATION_LOCK = 0x646578_6C6162
+#: A session idle inside a transaction this long is ended by the server (ms).
+IDLE_IN_TRANSACTION_MS = 30_000
+
+#: SQLSTATE classes and codes: retry, disk full, unusable.
+_TRANSIENT_STATES = ("08", "40001", "40P01", "55P03", "57P01", "57P02", "57P03", "53300")
+_FULL_STATES = ("53100",)
 
 
 class PostgresJobStore(SqlJobStore):
@@ -30,9 +43,10 @@ class PostgresJobStore(SqlJobStore):
         "seq_pk": "BIGSERIAL PRIMARY KEY",
         "blob": "BYTEA",
         "float": "DOUBLE PRECISION",
+        "bigint": "BIGINT",
     }
 
-    def __init__(self, url: str) -> None:
+    def __init__(self, url: str, retry_s: float = 5.0) -> None:
         try:
             import psycopg  # noqa: F401
         except ImportError as exc:  # pragma: no cover - depends on the install
@@ -41,6 +55,7 @@ class PostgresJobStore(SqlJobStore):
                 "pip install 'dexlab[distributed]'."
             ) from exc
         self.url = url
+        self.retry_s = retry_s
         self._local = threading.local()
         self._opened: list[Any] = []
         self._opened_lock = threading.Lock()
@@ -57,21 +72,28 @@ class PostgresJobStore(SqlJobStore):
         from psycopg.rows import dict_row
 
         conn = getattr(self._local, "conn", None)
-        if conn is not None and conn.closed:
+        if conn is not None and (conn.closed or conn.broken):
+            self._drop_conn()
             conn = None
         if conn is None:
-            try:
-                conn = psycopg.connect(
-                    self.url, autocommit=True, row_factory=dict_row, connect_timeout=10
-                )
-            except psycopg.Error as exc:
-                raise StoreUnavailable(
-                    f"Cannot connect to the job store at {self.location}: {exc}"
-                ) from exc
+            conn = psycopg.connect(
+                self.url, autocommit=True, row_factory=dict_row, connect_timeout=5
+            )
+            conn.execute(f"SET idle_in_transaction_session_timeout = {IDLE_IN_TRANSACTION_MS}")
             self._local.conn = conn
             with self._opened_lock:
                 self._opened.append(conn)
         return conn
+
+    def _drop_conn(self) -> None:
+        conn = getattr(self._local, "conn", None)
+        self._local.conn = None
+        if conn is not None:
+            with self._opened_lock:
+                if conn in self._opened:
+                    self._opened.remove(conn)
+            with contextlib.suppress(Exception):  # already dead
+                conn.close()
 
     @contextmanager
     def _write(self) -> Iterator[Any]:
@@ -82,6 +104,23 @@ class PostgresJobStore(SqlJobStore):
     def _lock_schema(self, conn: Any) -> None:
         self._exec(conn, "SELECT pg_advisory_xact_lock(?)", (_MIGRATION_LOCK,))
 
+    def classify(self, exc: BaseException) -> Fault:
+        import psycopg
+
+        if not isinstance(exc, psycopg.Error):
+            return Fault.OTHER
+        state = exc.sqlstate or ""
+        if state.startswith(_FULL_STATES):
+            return Fault.FULL
+        if isinstance(exc, psycopg.OperationalError) or state.startswith(_TRANSIENT_STATES):
+            return Fault.TRANSIENT
+        return Fault.OTHER
+
+    def after_fault(self, fault: Fault) -> None:
+        conn = getattr(self._local, "conn", None)
+        if conn is not None and (conn.closed or conn.broken or fault is not Fault.TRANSIENT):
+            self._drop_conn()
+
     def close(self) -> None:
         """Close every connection this store opened, in any thread."""
         with self._opened_lock:
@@ -90,13 +129,81 @@ class PostgresJobStore(SqlJobStore):
             conn.close()
         self._local = threading.local()
 
+    @retrying
     def ping(self) -> None:
-        import psycopg
+        self._exec(self._conn(), "SELECT 1 FROM jobs LIMIT 1").fetchall()
 
-        try:
-            self._exec(self._conn(), "SELECT 1 FROM jobs LIMIT 1").fetchall()
-        except psycopg.Error as exc:
-            self.close()
-            raise StoreUnavailable(
-                f"The job store at {self.location} does not answer: {exc}"
-            ) from exc
+    @retrying
+    def check_storage(self) -> None:
+        with self._write() as conn:
+            self._exec(conn, "SELECT 1 FROM jobs LIMIT 1").fetchall()
+
+    # -- artifact bytes: chunk rows -------------------------------------------------------
+    def _put_artifact_data(
+        self, job_id: str, attempt: int, name: str, data: bytes, conn: Any = None
+    ) -> None:
+        view = memoryview(data)
+        chunks = [view[i : i + CHUNK_BYTES] for i in range(0, len(data), CHUNK_BYTES)]
+        if conn is not None:  # a migration's own transaction
+            self._delete_chunks_in(conn, job_id, attempt, name)
+            for index, chunk in enumerate(chunks):
+                self._insert_chunk(conn, job_id, attempt, name, index, chunk)
+            return
+        self._delete_chunks(job_id, attempt, name)
+        for index, chunk in enumerate(chunks):
+            self._put_chunk(job_id, attempt, name, index, chunk)
+
+    def _delete_chunks_in(self, conn: Any, job_id: str, attempt: int, name: str) -> None:
+        self._exec(
+            conn,
+            "DELETE FROM artifact_chunks WHERE job_id = ? AND attempt = ? AND name = ?",
+            (job_id, attempt, name),
+        )
+
+    def _insert_chunk(
+        self, conn: Any, job_id: str, attempt: int, name: str, index: int, chunk: memoryview
+    ) -> None:
+        self._exec(
+            conn,
+            "INSERT INTO artifact_chunks (job_id, attempt, name, chunk, data) "
+            "VALUES (?, ?, ?, ?, ?) ON CONFLICT (job_id, attempt, name, chunk) "
+            "DO UPDATE SET data = excluded.data",
+            (job_id, attempt, name, index, bytes(chunk)),
+        )
+
+    @retrying
+    def _delete_chunks(self, job_id: str, attempt: int, name: str) -> None:
+        self._delete_chunks_in(self._conn(), job_id, attempt, name)
+
+    @retrying
+    def _put_chunk(
+        self, job_id: str, attempt: int, name: str, index: int, chunk: memoryview
+    ) -> None:
+        self._insert_chunk(self._conn(), job_id, attempt, name, index, chunk)
+
+    @retrying
+    def _get_chunk(self, job_id: str, attempt: int, name: str, index: int) -> bytes | None:
+        row = self._one(
+            self._conn(),
+            "SELECT data FROM artifact_chunks WHERE job_id = ? AND attempt = ? AND name = ? "
+            "AND chunk = ?",
+            (job_id, attempt, name, index),
+        )
+        return None if row is None else bytes(row["data"])
+
+    def _artifact_data(self, job_id: str, attempt: int, name: str) -> Iterator[bytes]:
+        index = 0
+        while (chunk := self._get_chunk(job_id, attempt, name, index)) is not None:
+            yield chunk
+            index += 1
+
+    @retrying
+    def _drop_artifact_data(self, job_id: str, keep_attempt: int | None) -> None:
+        if keep_attempt is None:
+            self._exec(self._conn(), "DELETE FROM artifact_chunks WHERE job_id = ?", (job_id,))
+        else:
+            self._exec(
+                self._conn(),
+                "DELETE FROM artifact_chunks WHERE job_id = ? AND attempt <> ?",
+                (job_id, keep_attempt),
+            )

@@ -3,7 +3,10 @@
 Each migration runs once, in order, inside the transaction that records its version in
 ``schema_version``; a store created by an older dexlab is migrated forward on start-up,
 never dropped.  Append new migrations; never edit an applied one.  ``{seq_pk}``,
-``{blob}`` and ``{float}`` are filled in with each database's type names.
+``{blob}``, ``{float}`` and ``{bigint}`` are filled in with each database's type
+names.  A migration that moves data runs its statements, then the store's data step
+for that version (:meth:`worker.store.sql.SqlJobStore._migrate_data`), in the same
+transaction.
 """
 
 from __future__ import annotations
@@ -64,5 +67,34 @@ MIGRATIONS: tuple[tuple[int, tuple[str, ...]], ...] = (
         # When the job was last handed to a broker (NULL: never), so a sweeper can
         # re-dispatch a job whose message was lost.
         ("ALTER TABLE jobs ADD COLUMN dispatched {float}",),
+    ),
+    (
+        3,
+        # Artifacts leave the job row's transaction: their bytes live outside the
+        # database (embedded: files) or in ~1 MiB chunks (PostgreSQL), one folder or
+        # chunk set per attempt; the index row points at the attempt that committed.
+        # The data step moves the old BLOBs out, drops the old table, and recomputes
+        # the idempotency hashes in their canonical form (worker.request_hash).
+        (
+            """CREATE TABLE artifact_index (
+                job_id TEXT NOT NULL REFERENCES jobs (job_id) ON DELETE CASCADE,
+                name TEXT NOT NULL,
+                media_type TEXT NOT NULL,
+                title TEXT NOT NULL DEFAULT '',
+                size {bigint} NOT NULL,
+                ord INTEGER NOT NULL DEFAULT 0,
+                attempt INTEGER NOT NULL,
+                etag TEXT NOT NULL,
+                PRIMARY KEY (job_id, name)
+            )""",
+            """CREATE TABLE artifact_chunks (
+                job_id TEXT NOT NULL,
+                attempt INTEGER NOT NULL,
+                name TEXT NOT NULL,
+                chunk INTEGER NOT NULL,
+                data {blob} NOT NULL,
+                PRIMARY KEY (job_id, attempt, name, chunk)
+            )""",
+        ),
     ),
 )

@@ -1,10 +1,13 @@
 """The job store's logic, written once in portable SQL for SQLite and PostgreSQL.
 
-A dialect subclass supplies connections and transactions
-(:class:`worker.store.sqlite.SqliteJobStore`,
+A dialect subclass supplies connections, transactions, fault classification and where
+artifact bytes live (:class:`worker.store.sqlite.SqliteJobStore`,
 :class:`worker.store.postgres.PostgresJobStore`).  Queries use ``?`` placeholders;
-every write is one transaction, and the rows a decision depends on are locked before
-the decision (``BEGIN IMMEDIATE`` in SQLite, ``SELECT ... FOR UPDATE`` in PostgreSQL).
+every write is one short transaction, and the rows a decision depends on are locked
+before the decision (``BEGIN IMMEDIATE`` in SQLite, ``SELECT ... FOR UPDATE`` in
+PostgreSQL).  Every public method is retried over transient faults
+(:mod:`worker.store.retry`); artifacts are handled in
+:class:`worker.store.artifact_index.ArtifactIndex`.
 """
 
 from __future__ import annotations
@@ -18,9 +21,11 @@ from contextlib import AbstractContextManager
 from datetime import UTC, datetime
 from typing import Any, ClassVar
 
-from worker.contract import Artifact, ArtifactInfo, JobRecord, JobStatus
+from worker.contract import ArtifactInfo, JobRecord, JobStatus
 from worker.errors import IdempotencyConflict
+from worker.store.artifact_index import ArtifactIndex
 from worker.store.base import Claim, ClaimAttempt, HeartbeatAck, JobPage, NewJob, WorkerInfo
+from worker.store.retry import Fault, retrying
 from worker.store.schema import MIGRATIONS
 
 __all__ = ["SqlJobStore", "decode_cursor", "encode_cursor"]
@@ -54,13 +59,15 @@ def decode_cursor(cursor: str) -> int:
         ) from exc
 
 
-class SqlJobStore:
+class SqlJobStore(ArtifactIndex):
     """A :class:`worker.store.base.JobStore` over a DB-API connection."""
 
     #: Appended to a SELECT whose rows the transaction goes on to change.
     lock_clause = ""
     #: Type names substituted into the migrations' ``{placeholders}``.
     ddl_types: ClassVar[Mapping[str, str]] = {}
+    #: How long (seconds) a call keeps retrying transient faults before it gives up.
+    retry_s: float = 5.0
 
     # -- dialect hooks ----------------------------------------------------------------
     def _conn(self) -> Conn:
@@ -76,6 +83,13 @@ class SqlJobStore:
 
     def _sql(self, query: str) -> str:
         return query
+
+    def classify(self, exc: BaseException) -> Fault:
+        """What a database exception means (see :mod:`worker.store.retry`)."""
+        return Fault.OTHER
+
+    def after_fault(self, fault: Fault) -> None:
+        """Drop what a fault may have broken (a dialect closes a dead connection)."""
 
     def close(self) -> None:
         """Close this thread's connection."""
@@ -101,6 +115,7 @@ class SqlJobStore:
         return self._one(conn, f"SELECT * FROM jobs WHERE job_id = ?{suffix}", (job_id,))
 
     # -- schema -----------------------------------------------------------------------
+    @retrying
     def initialise(self) -> None:
         with self._write() as conn:
             self._lock_schema(conn)
@@ -112,26 +127,20 @@ class SqlJobStore:
                     continue
                 for statement in statements:
                     self._exec(conn, statement.format(**self.ddl_types))
+                self._migrate_data(conn, version)
                 self._exec(conn, "INSERT INTO schema_version (version) VALUES (?)", (version,))
 
+    @retrying
     def schema_version(self) -> int:
         row = self._one(self._conn(), "SELECT MAX(version) AS v FROM schema_version")
         return int((row["v"] if row is not None else None) or 0)
 
     # -- records ----------------------------------------------------------------------
-    def _artifact_infos(self, conn: Conn, job_id: str) -> tuple[ArtifactInfo, ...]:
-        rows = self._all(
-            conn,
-            "SELECT name, media_type, size, title FROM artifacts WHERE job_id = ? ORDER BY ord",
-            (job_id,),
-        )
-        return tuple(ArtifactInfo(r["name"], r["media_type"], r["size"], r["title"]) for r in rows)
-
     def _record(self, conn: Conn, row: Row) -> JobRecord:
         status = JobStatus(row["status"])
-        artifacts = (
-            self._artifact_infos(conn, row["job_id"]) if status is JobStatus.SUCCESSFUL else ()
-        )
+        artifacts: tuple[ArtifactInfo, ...] = ()
+        if status is JobStatus.SUCCESSFUL:
+            artifacts = tuple(a.info for a in self._artifact_rows(conn, row["job_id"]))
         created = _ts(row["created"])
         updated = _ts(row["updated"])
         assert created is not None and updated is not None
@@ -155,38 +164,70 @@ class SqlJobStore:
         )
 
     def create_job(self, new: NewJob) -> tuple[JobRecord, bool]:
+        # The ID is chosen once, before any try, so a retry after an ambiguous commit
+        # finds the job it already created instead of creating a second one.
+        return self._create_job(new, str(uuid.uuid4()))
+
+    @retrying
+    def _create_job(self, new: NewJob, job_id: str) -> tuple[JobRecord, bool]:
         now = time.time()
         with self._write() as conn:
-            if new.idempotency_key is not None:
-                row = self._one(
-                    conn,
-                    f"SELECT * FROM jobs WHERE idempotency_key = ?{self.lock_clause}",
-                    (new.idempotency_key,),
-                )
-                if row is not None:
-                    if row["request_hash"] != new.request_hash:
-                        raise IdempotencyConflict(
-                            "This Idempotency-Key was already used with a different request "
-                            f"body (job {row['job_id']}); use a new key for a new request."
-                        )
-                    return self._record(conn, row), False
-            job_id = str(uuid.uuid4())
+            # ON CONFLICT DO NOTHING: of concurrent submits with one idempotency key,
+            # one inserts and the others wait for its commit, then find its row.
             self._exec(
                 conn,
                 """INSERT INTO jobs (job_id, process_id, status, inputs, created, updated,
                        max_attempts, time_limit_s, idempotency_key, request_hash, message)
-                   VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)""",
-                (job_id, new.process_id, _ACCEPTED, json.dumps(dict(new.inputs)), now, now,
-                 new.max_attempts, new.time_limit_s, new.idempotency_key, new.request_hash,
-                 "queued"),
+                   VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?) ON CONFLICT DO NOTHING""",
+                (
+                    job_id,
+                    new.process_id,
+                    _ACCEPTED,
+                    json.dumps(dict(new.inputs)),
+                    now,
+                    now,
+                    new.max_attempts,
+                    new.time_limit_s,
+                    new.idempotency_key,
+                    new.request_hash,
+                    "queued",
+                ),
             )
-            return self._record(conn, self._job_row(conn, job_id)), True
+            row = self._job_row(conn, job_id)
+            if row is not None:  # inserted now, or by this call's earlier ambiguous try
+                return self._record(conn, row), True
+            row = self._one(
+                conn, "SELECT * FROM jobs WHERE idempotency_key = ?", (new.idempotency_key,)
+            )
+            if row is None:  # pragma: no cover - a job ID collision
+                raise RuntimeError(f"job {job_id} could not be created")
+            if row["request_hash"] != new.request_hash:
+                raise IdempotencyConflict(
+                    "This Idempotency-Key was already used with a different request "
+                    f"body (job {row['job_id']}); use a new key for a new request."
+                )
+            return self._record(conn, row), False
 
+    @retrying
     def get_job(self, job_id: str) -> JobRecord | None:
         conn = self._conn()
         row = self._job_row(conn, job_id)
         return None if row is None else self._record(conn, row)
 
+    @retrying
+    def statuses(self, job_ids: Sequence[str]) -> dict[str, JobStatus]:
+        """The status of each known job among ``job_ids``, in one query."""
+        if not job_ids:
+            return {}
+        marks = ", ".join("?" for _ in job_ids)
+        rows = self._all(
+            self._conn(),
+            f"SELECT job_id, status FROM jobs WHERE job_id IN ({marks})",
+            tuple(job_ids),
+        )
+        return {r["job_id"]: JobStatus(r["status"]) for r in rows}
+
+    @retrying
     def list_jobs(
         self,
         *,
@@ -230,8 +271,14 @@ class SqlJobStore:
                 conn,
                 "UPDATE jobs SET status = ?, error = ?, finished = ?, updated = ?, "
                 "lease_token = NULL, lease_expires = NULL, message = ? WHERE job_id = ?",
-                (JobStatus.FAILED.value, json.dumps(error), now, now, error["detail"],
-                 row["job_id"]),
+                (
+                    JobStatus.FAILED.value,
+                    json.dumps(error),
+                    now,
+                    now,
+                    error["detail"],
+                    row["job_id"],
+                ),
             )
             return JobStatus.FAILED
         self._exec(
@@ -242,6 +289,7 @@ class SqlJobStore:
         )
         return JobStatus.ACCEPTED
 
+    @retrying
     def reap_expired(self) -> list[str]:
         """Requeue (or fail) every running job whose lease expired; the requeued IDs."""
         now = time.time()
@@ -252,7 +300,11 @@ class SqlJobStore:
                 f"WHERE status = ? AND lease_expires < ?{self.lock_clause}",
                 (_RUNNING, now),
             )
-            return [r["job_id"] for r in rows if self._reap(conn, r, now) is JobStatus.ACCEPTED]
+            outcomes = {r["job_id"]: self._reap(conn, r, now) for r in rows}
+        for job_id, status in outcomes.items():
+            if status is JobStatus.FAILED:
+                self._discard_artifact_data(job_id)
+        return [j for j, status in outcomes.items() if status is JobStatus.ACCEPTED]
 
     def _take(self, conn: Conn, job_id: str, worker_id: str, lease_s: float) -> Claim:
         now = time.time()
@@ -268,6 +320,7 @@ class SqlJobStore:
         )
         return Claim(self._record(conn, self._job_row(conn, job_id)), token)
 
+    @retrying
     def claim_next(self, worker_id: str, lease_s: float) -> Claim | None:
         self.reap_expired()
         with self._write() as conn:
@@ -281,6 +334,7 @@ class SqlJobStore:
                 return None
             return self._take(conn, row["job_id"], worker_id, lease_s)
 
+    @retrying
     def claim_job(self, job_id: str, worker_id: str, lease_s: float) -> ClaimAttempt:
         now = time.time()
         with self._write() as conn:
@@ -296,6 +350,7 @@ class SqlJobStore:
                 return ClaimAttempt(None, status, None)
             return ClaimAttempt(self._take(conn, job_id, worker_id, lease_s), status, None)
 
+    @retrying
     def heartbeat(self, job_id: str, lease_token: str, lease_s: float) -> HeartbeatAck:
         with self._write() as conn:
             cur = self._exec(
@@ -309,67 +364,54 @@ class SqlJobStore:
             row = self._one(conn, "SELECT status FROM jobs WHERE job_id = ?", (job_id,))
             return HeartbeatAck(False, None if row is None else JobStatus(row["status"]))
 
+    @retrying
     def report_progress(self, job_id: str, lease_token: str, percent: float, message: str) -> bool:
         with self._write() as conn:
             cur = self._exec(
                 conn,
                 "UPDATE jobs SET progress = ?, message = ?, updated = ? "
                 "WHERE job_id = ? AND lease_token = ? AND status = ?",
-                (max(0.0, min(100.0, percent)), message, time.time(), job_id, lease_token,
-                 _RUNNING),
+                (
+                    max(0.0, min(100.0, percent)),
+                    message,
+                    time.time(),
+                    job_id,
+                    lease_token,
+                    _RUNNING,
+                ),
             )
             return bool(cur.rowcount == 1)
 
-    def complete(
-        self,
-        job_id: str,
-        lease_token: str,
-        result: Mapping[str, Any],
-        artifacts: Sequence[Artifact],
-    ) -> bool:
-        now = time.time()
-        payload = json.dumps(result, allow_nan=False)
-        with self._write() as conn:
-            row = self._one(
-                conn,
-                "SELECT job_id FROM jobs WHERE job_id = ? AND lease_token = ? AND status = ?"
-                f"{self.lock_clause}",
-                (job_id, lease_token, _RUNNING),
-            )
-            if row is None:
-                return False
-            self._exec(conn, "DELETE FROM artifacts WHERE job_id = ?", (job_id,))
-            cur = conn.cursor()
-            cur.executemany(
-                self._sql(
-                    "INSERT INTO artifacts (job_id, name, media_type, title, size, data, ord) "
-                    "VALUES (?, ?, ?, ?, ?, ?, ?)"
-                ),
-                [(job_id, a.name, a.media_type, a.title, len(a.data), a.data, i)
-                 for i, a in enumerate(artifacts)],
-            )
-            self._exec(
-                conn,
-                "UPDATE jobs SET result = ?, status = ?, progress = 100, finished = ?, "
-                "updated = ?, message = 'finished', lease_token = NULL, lease_expires = NULL "
-                "WHERE job_id = ?",
-                (payload, JobStatus.SUCCESSFUL.value, now, now, job_id),
-            )
-            return True
-
+    @retrying
     def fail(self, job_id: str, lease_token: str, error: Mapping[str, Any]) -> bool:
         now = time.time()
         with self._write() as conn:
-            cur = self._exec(
+            row = self._one(
                 conn,
-                "UPDATE jobs SET status = ?, error = ?, finished = ?, updated = ?, message = ?, "
-                "lease_token = NULL, lease_expires = NULL "
-                "WHERE job_id = ? AND lease_token = ? AND status = ?",
-                (JobStatus.FAILED.value, json.dumps(dict(error)), now, now,
-                 str(error.get("detail", "failed")), job_id, lease_token, _RUNNING),
+                f"SELECT status FROM jobs WHERE job_id = ? AND lease_token = ?{self.lock_clause}",
+                (job_id, lease_token),
             )
-            return bool(cur.rowcount == 1)
+            if row is None or row["status"] not in (_RUNNING, JobStatus.FAILED.value):
+                return False
+            if row["status"] == _RUNNING:  # (failed: our own earlier, ambiguous commit)
+                # The token stays on the row so a retried call recognises its commit.
+                self._exec(
+                    conn,
+                    "UPDATE jobs SET status = ?, error = ?, finished = ?, updated = ?, "
+                    "message = ?, lease_expires = NULL WHERE job_id = ?",
+                    (
+                        JobStatus.FAILED.value,
+                        json.dumps(dict(error)),
+                        now,
+                        now,
+                        str(error.get("detail", "failed")),
+                        job_id,
+                    ),
+                )
+        self._discard_artifact_data(job_id)
+        return True
 
+    @retrying
     def expire_leases_of(self, worker_id: str) -> int:
         with self._write() as conn:
             cur = self._exec(
@@ -379,6 +421,7 @@ class SqlJobStore:
             )
             return int(cur.rowcount)
 
+    @retrying
     def dismiss(self, job_id: str) -> JobRecord | None:
         now = time.time()
         with self._write() as conn:
@@ -386,15 +429,18 @@ class SqlJobStore:
             if row is None:
                 return None
             if row["status"] != JobStatus.DISMISSED.value:
-                self._exec(conn, "DELETE FROM artifacts WHERE job_id = ?", (job_id,))
+                self._exec(conn, "DELETE FROM artifact_index WHERE job_id = ?", (job_id,))
                 self._exec(
                     conn,
                     "UPDATE jobs SET status = ?, result = NULL, finished = COALESCE(finished, ?),"
                     " updated = ?, message = 'dismissed by the client' WHERE job_id = ?",
                     (JobStatus.DISMISSED.value, now, now, job_id),
                 )
-            return self._record(conn, self._job_row(conn, job_id))
+            record = self._record(conn, self._job_row(conn, job_id))
+        self._discard_artifact_data(job_id)
+        return record
 
+    @retrying
     def get_result(self, job_id: str) -> Mapping[str, Any] | None:
         row = self._one(
             self._conn(),
@@ -403,22 +449,15 @@ class SqlJobStore:
         )
         return None if row is None or row["result"] is None else json.loads(row["result"])
 
-    def get_artifact(self, job_id: str, name: str) -> Artifact | None:
-        row = self._one(
-            self._conn(),
-            "SELECT name, media_type, data, title FROM artifacts WHERE job_id = ? AND name = ?",
-            (job_id, name),
-        )
-        if row is None:
-            return None
-        return Artifact(row["name"], row["media_type"], bytes(row["data"]), row["title"])
-
     # -- dispatch bookkeeping ---------------------------------------------------------
+    @retrying
     def mark_dispatched(self, job_id: str) -> None:
         with self._write() as conn:
-            self._exec(conn, "UPDATE jobs SET dispatched = ? WHERE job_id = ?",
-                       (time.time(), job_id))
+            self._exec(
+                conn, "UPDATE jobs SET dispatched = ? WHERE job_id = ?", (time.time(), job_id)
+            )
 
+    @retrying
     def undispatched(self, older_than_s: float, limit: int = 100) -> list[str]:
         """Accepted jobs dispatched (or, never dispatched, created) over ``older_than_s`` ago."""
         rows = self._all(
@@ -430,6 +469,7 @@ class SqlJobStore:
         return [r["job_id"] for r in rows]
 
     # -- worker registry --------------------------------------------------------------
+    @retrying
     def register_worker(self, worker_id: str, host: str, pid: int) -> None:
         now = time.time()
         with self._write() as conn:
@@ -442,20 +482,28 @@ class SqlJobStore:
                 (worker_id, host, pid, now, now),
             )
 
+    @retrying
     def worker_heartbeat(self, worker_id: str) -> None:
         with self._write() as conn:
-            self._exec(conn, "UPDATE workers SET heartbeat = ? WHERE worker_id = ?",
-                       (time.time(), worker_id))
+            self._exec(
+                conn,
+                "UPDATE workers SET heartbeat = ? WHERE worker_id = ?",
+                (time.time(), worker_id),
+            )
 
+    @retrying
     def unregister_worker(self, worker_id: str) -> None:
         with self._write() as conn:
             self._exec(conn, "DELETE FROM workers WHERE worker_id = ?", (worker_id,))
 
+    @retrying
     def live_workers(self, within_s: float) -> list[WorkerInfo]:
         rows = self._all(
             self._conn(),
             "SELECT * FROM workers WHERE heartbeat >= ? ORDER BY started",
             (time.time() - within_s,),
         )
-        return [WorkerInfo(r["worker_id"], r["host"], r["pid"], r["started"], r["heartbeat"])
-                for r in rows]
+        return [
+            WorkerInfo(r["worker_id"], r["host"], r["pid"], r["started"], r["heartbeat"])
+            for r in rows
+        ]

@@ -1,7 +1,10 @@
-"""The embedded job store: one SQLite file (WAL mode), safe across processes.
+"""The embedded job store: one SQLite file (WAL mode), safe across processes, with the
+artifacts as files beside it (``<data dir>/artifacts/<job>/<attempt>/<name>``).
 
 Writes run in ``BEGIN IMMEDIATE`` transactions, so claims are serialised by SQLite's
-write lock; each thread keeps its own connection.
+write lock; each thread keeps its own connection.  A busy or locked database is waited
+for (about a second per try) and retried for ``retry_s`` in all; then the call raises
+:class:`worker.errors.StoreUnavailable`.
 """
 
 from __future__ import annotations
@@ -9,14 +12,40 @@ from __future__ import annotations
 import sqlite3
 import threading
 from collections.abc import Iterator, Mapping
-from contextlib import contextmanager
+from contextlib import contextmanager, suppress
 from pathlib import Path
 from typing import Any, ClassVar
 
-from worker.errors import StoreUnavailable
+from worker.store.artifact_files import FULL_ERRNOS, ArtifactFiles
+from worker.store.retry import Fault, retrying
 from worker.store.sql import SqlJobStore
 
 __all__ = ["SqliteJobStore"]
+
+#: SQLite's own busy wait per statement (seconds); the retry loop goes on after it.
+_BUSY_TIMEOUT_S = 1.0
+#: Readiness wants at least this much free disk for results.
+MIN_FREE_BYTES = 64 << 20
+
+_TRANSIENT_CODES = frozenset(
+    {
+        "SQLITE_BUSY",
+        "SQLITE_LOCKED",
+        "SQLITE_BUSY_SNAPSHOT",
+        "SQLITE_BUSY_RECOVERY",
+        "SQLITE_LOCKED_SHAREDCACHE",
+    }
+)
+_BROKEN_CODES = frozenset(
+    {
+        "SQLITE_CORRUPT",
+        "SQLITE_NOTADB",
+        "SQLITE_CANTOPEN",
+        "SQLITE_READONLY",
+        "SQLITE_IOERR",
+        "SQLITE_PERM",
+    }
+)
 
 
 class SqliteJobStore(SqlJobStore):
@@ -26,20 +55,23 @@ class SqliteJobStore(SqlJobStore):
         "seq_pk": "INTEGER PRIMARY KEY AUTOINCREMENT",
         "blob": "BLOB",
         "float": "REAL",
+        "bigint": "INTEGER",
     }
 
-    def __init__(self, path: Path | str) -> None:
+    def __init__(self, path: Path | str, retry_s: float = 5.0) -> None:
         self.path = Path(path)
+        self.retry_s = retry_s
+        self.files = ArtifactFiles(self.path.parent / "artifacts")
         self._local = threading.local()
         self._opened: list[Any] = []
         self._opened_lock = threading.Lock()
 
     @classmethod
-    def from_url(cls, url: str) -> SqliteJobStore:
+    def from_url(cls, url: str, retry_s: float = 5.0) -> SqliteJobStore:
         prefix = "sqlite:///"
         if not url.startswith(prefix):
             raise ValueError(f"The 'store_url' must start with {prefix!r}. Got {url!r} instead.")
-        return cls(Path(url[len(prefix) :]))
+        return cls(Path(url[len(prefix) :]), retry_s=retry_s)
 
     @property
     def location(self) -> str:
@@ -48,21 +80,35 @@ class SqliteJobStore(SqlJobStore):
     def _conn(self) -> sqlite3.Connection:
         conn: sqlite3.Connection | None = getattr(self._local, "conn", None)
         if conn is None:
+            self.path.parent.mkdir(parents=True, exist_ok=True)
+            conn = sqlite3.connect(
+                self.path,
+                timeout=_BUSY_TIMEOUT_S,
+                isolation_level=None,
+                check_same_thread=False,
+            )
             try:
-                self.path.parent.mkdir(parents=True, exist_ok=True)
-                conn = sqlite3.connect(
-                    self.path, timeout=30.0, isolation_level=None, check_same_thread=False
-                )
                 conn.row_factory = sqlite3.Row
                 conn.execute("PRAGMA journal_mode=WAL")
                 conn.execute("PRAGMA synchronous=NORMAL")
                 conn.execute("PRAGMA foreign_keys=ON")
-            except (sqlite3.Error, OSError) as exc:
-                raise StoreUnavailable(f"Cannot open the job store at {self.path}: {exc}") from exc
+            except BaseException:
+                conn.close()
+                raise
             self._local.conn = conn
             with self._opened_lock:
                 self._opened.append(conn)
         return conn
+
+    def _drop_conn(self) -> None:
+        conn: sqlite3.Connection | None = getattr(self._local, "conn", None)
+        self._local.conn = None
+        if conn is not None:
+            with self._opened_lock:
+                if conn in self._opened:
+                    self._opened.remove(conn)
+            with suppress(sqlite3.Error):
+                conn.close()
 
     @contextmanager
     def _write(self) -> Iterator[sqlite3.Connection]:
@@ -71,10 +117,42 @@ class SqliteJobStore(SqlJobStore):
         try:
             yield conn
         except BaseException:
-            conn.execute("ROLLBACK")
+            try:
+                conn.execute("ROLLBACK")
+            except sqlite3.Error:  # (disk full, I/O error): a fresh connection is clean
+                self._drop_conn()
             raise
         else:
-            conn.execute("COMMIT")
+            try:
+                conn.execute("COMMIT")
+            except BaseException:
+                try:
+                    conn.execute("ROLLBACK")
+                except sqlite3.Error:
+                    self._drop_conn()
+                raise
+
+    def classify(self, exc: BaseException) -> Fault:
+        if isinstance(exc, OSError):
+            return Fault.FULL if exc.errno in FULL_ERRNOS else Fault.BROKEN
+        if not isinstance(exc, sqlite3.Error):
+            return Fault.OTHER
+        name = getattr(exc, "sqlite_errorname", "") or ""
+        text = str(exc).lower()
+        if name.startswith("SQLITE_FULL") or "disk is full" in text:
+            return Fault.FULL
+        if name in _TRANSIENT_CODES or "locked" in text or "busy" in text:
+            return Fault.TRANSIENT
+        if any(name.startswith(code) for code in _BROKEN_CODES) or (
+            isinstance(exc, sqlite3.DatabaseError)
+            and not isinstance(exc, sqlite3.IntegrityError | sqlite3.ProgrammingError)
+        ):
+            return Fault.BROKEN
+        return Fault.OTHER
+
+    def after_fault(self, fault: Fault) -> None:
+        if fault is not Fault.TRANSIENT:
+            self._drop_conn()
 
     def close(self) -> None:
         """Close every connection this store opened, in any thread."""
@@ -84,8 +162,26 @@ class SqliteJobStore(SqlJobStore):
             conn.close()
         self._local = threading.local()
 
+    @retrying
     def ping(self) -> None:
-        try:
-            self._conn().execute("SELECT 1 FROM jobs LIMIT 1").fetchall()
-        except sqlite3.Error as exc:
-            raise StoreUnavailable(f"The job store at {self.path} does not answer: {exc}") from exc
+        self._conn().execute("SELECT 1 FROM jobs LIMIT 1").fetchall()
+
+    @retrying
+    def check_storage(self) -> None:
+        """The database takes a write lock, and the artifact folder a file, with
+        :data:`MIN_FREE_BYTES` to spare."""
+        with self._write() as conn:
+            conn.execute("SELECT 1 FROM jobs LIMIT 1").fetchall()
+        self.files.check_writable(MIN_FREE_BYTES)
+
+    # -- artifact bytes: files ----------------------------------------------------------
+    def _put_artifact_data(
+        self, job_id: str, attempt: int, name: str, data: bytes, conn: Any = None
+    ) -> None:
+        self.files.write(job_id, attempt, name, data)
+
+    def _artifact_data(self, job_id: str, attempt: int, name: str) -> Iterator[bytes]:
+        return self.files.chunks(job_id, attempt, name)
+
+    def _drop_artifact_data(self, job_id: str, keep_attempt: int | None) -> None:
+        self.files.delete(job_id, keep_attempt)
