@@ -1,0 +1,165 @@
+"""The worker under store trouble, in-process against a real SQLite store: a store
+that refuses some calls for a while (a fake wrapping the real store, not a mock)."""
+
+from __future__ import annotations
+
+import threading
+import time
+from pathlib import Path
+from typing import Any
+
+import pytest
+
+from tests.unit.worker.test_runner import registry
+from worker.contract import Artifact, JobStatus
+from worker.errors import StorageFull, StoreUnavailable
+from worker.result_commit import commit_outcome
+from worker.runner import AttemptGuard, WorkerLoop
+from worker.settings import WorkerSettings
+from worker.store import open_store
+from worker.store.base import JobStore, NewJob
+
+
+class TroubledStore:
+    """The real store, except that the named calls raise ``error`` until ``until``
+    (a monotonic time) or for their first ``times`` calls."""
+
+    def __init__(
+        self,
+        store: JobStore,
+        error: Exception,
+        failing: set[str],
+        until: float = float("inf"),
+        times: int = 10**9,
+    ) -> None:
+        self._store = store
+        self._error = error
+        self._failing = failing
+        self._until = until
+        self._times = times
+        self.calls: dict[str, int] = {}
+
+    def __getattr__(self, name: str) -> Any:
+        method = getattr(self._store, name)
+        if name not in self._failing:
+            return method
+
+        def troubled(*args: Any, **kwargs: Any) -> Any:
+            self.calls[name] = self.calls.get(name, 0) + 1
+            if time.monotonic() < self._until and self.calls[name] <= self._times:
+                raise self._error
+            return method(*args, **kwargs)
+
+        return troubled
+
+
+@pytest.fixture
+def store(tmp_path: Path) -> JobStore:
+    return open_store(f"sqlite:///{tmp_path / 'jobs.db'}")
+
+
+def submit_square(store: JobStore, x: float = 3.0) -> str:
+    job, _ = store.create_job(NewJob("square", {"x": x}, time_limit_s=30, max_attempts=2))
+    return job.job_id
+
+
+def test_progress_writes_that_fail_never_fail_the_job(store: JobStore) -> None:
+    job_id = submit_square(store)
+    troubled = TroubledStore(store, StoreUnavailable("locked"), {"report_progress"})
+    loop = WorkerLoop(WorkerSettings(workers=1), troubled, registry())  # type: ignore[arg-type]
+    claim = store.claim_next(loop.worker_id, 10)
+    assert claim is not None
+    loop.execute(claim)
+    done = store.get_job(job_id)
+    assert done is not None and done.status is JobStatus.SUCCESSFUL, done
+    assert troubled.calls["report_progress"] >= 1
+
+
+def test_the_guard_survives_store_errors_and_keeps_renewing(store: JobStore) -> None:
+    job_id = submit_square(store)
+    claim = store.claim_next("w", 1.0)
+    assert claim is not None
+    troubled = TroubledStore(
+        store, StoreUnavailable("down"), {"heartbeat", "worker_heartbeat"}, times=3
+    )
+    settings = WorkerSettings(workers=1, heartbeat_seconds=0.1, lease_seconds=1.0)
+    guard = AttemptGuard(troubled, claim, settings, "w", time.time() + 60)  # type: ignore[arg-type]
+    guard.start()
+    try:
+        time.sleep(1.5)  # > the lease: only renewals after the errors keep it alive
+        assert guard.is_alive()
+        assert troubled.calls["heartbeat"] > 3
+        assert store.reap_expired() == []
+        job = store.get_job(job_id)
+        assert job is not None and job.status is JobStatus.RUNNING
+    finally:
+        guard.stop()
+        guard.join(5)
+
+
+def test_a_commit_waits_out_a_store_outage(store: JobStore) -> None:
+    job_id = submit_square(store)
+    claim = store.claim_next("w", 30)
+    assert claim is not None
+    troubled = TroubledStore(
+        store, StoreUnavailable("down"), {"complete"}, until=time.monotonic() + 1.0
+    )
+    stored = commit_outcome(
+        troubled,
+        claim,
+        {"square": 9.0},  # type: ignore[arg-type]
+        [Artifact("s.csv", "text/csv", b"9")],
+        give_up_after_s=10,
+    )
+    assert stored and troubled.calls["complete"] >= 2
+    done = store.get_job(job_id)
+    assert done is not None and done.status is JobStatus.SUCCESSFUL
+
+
+def test_a_commit_gives_up_after_the_bound_and_leaves_the_job_to_a_retry(
+    store: JobStore,
+) -> None:
+    job_id = submit_square(store)
+    claim = store.claim_next("w", 30)
+    assert claim is not None
+    troubled = TroubledStore(store, StoreUnavailable("down"), {"complete"})
+    started = time.monotonic()
+    assert not commit_outcome(troubled, claim, {}, [], give_up_after_s=1.0)  # type: ignore[arg-type]
+    assert time.monotonic() - started < 3
+    job = store.get_job(job_id)
+    assert job is not None and job.status is JobStatus.RUNNING  # its lease will lapse
+
+
+def test_a_full_disk_fails_the_job_once_with_the_cause(store: JobStore) -> None:
+    job_id = submit_square(store)
+    troubled = TroubledStore(store, StorageFull("No space left on device"), {"complete"})
+    loop = WorkerLoop(WorkerSettings(workers=1), troubled, registry())  # type: ignore[arg-type]
+    claim = store.claim_next(loop.worker_id, 10)
+    assert claim is not None
+    loop.execute(claim)
+    done = store.get_job(job_id)
+    assert done is not None and done.status is JobStatus.FAILED
+    assert done.error is not None and done.error["type"] == "storage-full"
+    assert "No space left" in done.error["detail"] and done.attempts == 1
+    assert troubled.calls["complete"] == 1  # no recompute, no retry loop
+
+
+def test_the_worker_loop_rides_out_an_unavailable_store(store: JobStore) -> None:
+    job_id = submit_square(store)
+    troubled = TroubledStore(
+        store, StoreUnavailable("locked"), {"claim_next"}, until=time.monotonic() + 1.0
+    )
+    loop = WorkerLoop(WorkerSettings(workers=1, poll_seconds=0.05), troubled, registry())  # type: ignore[arg-type]
+    runner = threading.Thread(target=loop.run, daemon=True)
+    runner.start()
+    deadline = time.monotonic() + 15
+    while time.monotonic() < deadline:
+        job = store.get_job(job_id)
+        if job is not None and job.status is JobStatus.SUCCESSFUL:
+            break
+        time.sleep(0.05)
+    loop.request_stop()
+    runner.join(10)
+    job = store.get_job(job_id)
+    assert job is not None and job.status is JobStatus.SUCCESSFUL
+    assert troubled.calls["claim_next"] >= 2
