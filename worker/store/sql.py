@@ -24,7 +24,9 @@ from typing import Any, ClassVar
 from worker.contract import ArtifactInfo, JobRecord, JobStatus
 from worker.errors import IdempotencyConflict
 from worker.store.artifact_index import ArtifactIndex
-from worker.store.base import Claim, ClaimAttempt, HeartbeatAck, JobPage, NewJob, WorkerInfo
+from worker.store.base import JobPage, NewJob
+from worker.store.bookkeeping import Bookkeeping
+from worker.store.leases import Leases
 from worker.store.retry import Fault, retrying
 from worker.store.schema import MIGRATIONS
 
@@ -59,7 +61,7 @@ def decode_cursor(cursor: str) -> int:
         ) from exc
 
 
-class SqlJobStore(ArtifactIndex):
+class SqlJobStore(Leases, ArtifactIndex, Bookkeeping):
     """A :class:`worker.store.base.JobStore` over a DB-API connection."""
 
     #: Appended to a SELECT whose rows the transaction goes on to change.
@@ -257,170 +259,6 @@ class SqlJobStore(ArtifactIndex):
         next_cursor = encode_cursor(rows[-1]["seq"]) if more and rows else None
         return JobPage([self._record(conn, r) for r in rows], next_cursor)
 
-    # -- leases -----------------------------------------------------------------------
-    def _reap(self, conn: Conn, row: Row, now: float) -> JobStatus:
-        """Requeue one running job whose lease expired, or fail it if out of attempts."""
-        lost = f"worker {row['worker_id']} was lost during attempt {row['attempts']}"
-        if row["attempts"] >= row["max_attempts"]:
-            error = {
-                "type": "worker-lost",
-                "title": "Worker lost",
-                "detail": f"{lost}; no attempts left ({row['max_attempts']} allowed).",
-            }
-            self._exec(
-                conn,
-                "UPDATE jobs SET status = ?, error = ?, finished = ?, updated = ?, "
-                "lease_token = NULL, lease_expires = NULL, message = ? WHERE job_id = ?",
-                (
-                    JobStatus.FAILED.value,
-                    json.dumps(error),
-                    now,
-                    now,
-                    error["detail"],
-                    row["job_id"],
-                ),
-            )
-            return JobStatus.FAILED
-        self._exec(
-            conn,
-            "UPDATE jobs SET status = ?, updated = ?, lease_token = NULL, lease_expires = NULL,"
-            " progress = 0, dispatched = 0, message = ? WHERE job_id = ?",
-            (_ACCEPTED, now, f"{lost}; queued for a retry", row["job_id"]),
-        )
-        return JobStatus.ACCEPTED
-
-    @retrying
-    def reap_expired(self) -> list[str]:
-        """Requeue (or fail) every running job whose lease expired; the requeued IDs."""
-        now = time.time()
-        with self._write() as conn:
-            rows = self._all(
-                conn,
-                "SELECT job_id, attempts, max_attempts, worker_id FROM jobs "
-                f"WHERE status = ? AND lease_expires < ?{self.lock_clause}",
-                (_RUNNING, now),
-            )
-            outcomes = {r["job_id"]: self._reap(conn, r, now) for r in rows}
-        for job_id, status in outcomes.items():
-            if status is JobStatus.FAILED:
-                self._discard_artifact_data(job_id)
-        return [j for j, status in outcomes.items() if status is JobStatus.ACCEPTED]
-
-    def _take(self, conn: Conn, job_id: str, worker_id: str, lease_s: float) -> Claim:
-        now = time.time()
-        token = uuid.uuid4().hex
-        self._exec(
-            conn,
-            """UPDATE jobs SET status = ?, lease_token = ?, lease_expires = ?,
-                   worker_id = ?, attempts = attempts + 1, attempt_started = ?,
-                   started = COALESCE(started, ?), updated = ?, progress = 0,
-                   message = 'running attempt ' || (attempts + 1)
-               WHERE job_id = ?""",
-            (_RUNNING, token, now + lease_s, worker_id, now, now, now, job_id),
-        )
-        return Claim(self._record(conn, self._job_row(conn, job_id)), token)
-
-    @retrying
-    def claim_next(self, worker_id: str, lease_s: float) -> Claim | None:
-        self.reap_expired()
-        with self._write() as conn:
-            row = self._one(
-                conn,
-                f"SELECT job_id FROM jobs WHERE status = ? ORDER BY seq LIMIT 1"
-                f"{self.lock_clause}{' SKIP LOCKED' if self.lock_clause else ''}",
-                (_ACCEPTED,),
-            )
-            if row is None:
-                return None
-            return self._take(conn, row["job_id"], worker_id, lease_s)
-
-    @retrying
-    def claim_job(self, job_id: str, worker_id: str, lease_s: float) -> ClaimAttempt:
-        now = time.time()
-        with self._write() as conn:
-            row = self._job_row(conn, job_id, lock=True)
-            if row is None:
-                return ClaimAttempt(None, None, None)
-            status = JobStatus(row["status"])
-            if status is JobStatus.RUNNING:
-                if row["lease_expires"] is not None and row["lease_expires"] >= now:
-                    return ClaimAttempt(None, status, row["lease_expires"] - now)
-                status = self._reap(conn, row, now)
-            if status is not JobStatus.ACCEPTED:
-                return ClaimAttempt(None, status, None)
-            return ClaimAttempt(self._take(conn, job_id, worker_id, lease_s), status, None)
-
-    @retrying
-    def heartbeat(self, job_id: str, lease_token: str, lease_s: float) -> HeartbeatAck:
-        with self._write() as conn:
-            cur = self._exec(
-                conn,
-                "UPDATE jobs SET lease_expires = ? WHERE job_id = ? AND lease_token = ? "
-                "AND status = ?",
-                (time.time() + lease_s, job_id, lease_token, _RUNNING),
-            )
-            if cur.rowcount == 1:
-                return HeartbeatAck(True, JobStatus.RUNNING)
-            row = self._one(conn, "SELECT status FROM jobs WHERE job_id = ?", (job_id,))
-            return HeartbeatAck(False, None if row is None else JobStatus(row["status"]))
-
-    @retrying
-    def report_progress(self, job_id: str, lease_token: str, percent: float, message: str) -> bool:
-        with self._write() as conn:
-            cur = self._exec(
-                conn,
-                "UPDATE jobs SET progress = ?, message = ?, updated = ? "
-                "WHERE job_id = ? AND lease_token = ? AND status = ?",
-                (
-                    max(0.0, min(100.0, percent)),
-                    message,
-                    time.time(),
-                    job_id,
-                    lease_token,
-                    _RUNNING,
-                ),
-            )
-            return bool(cur.rowcount == 1)
-
-    @retrying
-    def fail(self, job_id: str, lease_token: str, error: Mapping[str, Any]) -> bool:
-        now = time.time()
-        with self._write() as conn:
-            row = self._one(
-                conn,
-                f"SELECT status FROM jobs WHERE job_id = ? AND lease_token = ?{self.lock_clause}",
-                (job_id, lease_token),
-            )
-            if row is None or row["status"] not in (_RUNNING, JobStatus.FAILED.value):
-                return False
-            if row["status"] == _RUNNING:  # (failed: our own earlier, ambiguous commit)
-                # The token stays on the row so a retried call recognises its commit.
-                self._exec(
-                    conn,
-                    "UPDATE jobs SET status = ?, error = ?, finished = ?, updated = ?, "
-                    "message = ?, lease_expires = NULL WHERE job_id = ?",
-                    (
-                        JobStatus.FAILED.value,
-                        json.dumps(dict(error)),
-                        now,
-                        now,
-                        str(error.get("detail", "failed")),
-                        job_id,
-                    ),
-                )
-        self._discard_artifact_data(job_id)
-        return True
-
-    @retrying
-    def expire_leases_of(self, worker_id: str) -> int:
-        with self._write() as conn:
-            cur = self._exec(
-                conn,
-                "UPDATE jobs SET lease_expires = 0 WHERE worker_id = ? AND status = ?",
-                (worker_id, _RUNNING),
-            )
-            return int(cur.rowcount)
-
     @retrying
     def dismiss(self, job_id: str) -> JobRecord | None:
         now = time.time()
@@ -448,62 +286,3 @@ class SqlJobStore(ArtifactIndex):
             (job_id, JobStatus.SUCCESSFUL.value),
         )
         return None if row is None or row["result"] is None else json.loads(row["result"])
-
-    # -- dispatch bookkeeping ---------------------------------------------------------
-    @retrying
-    def mark_dispatched(self, job_id: str) -> None:
-        with self._write() as conn:
-            self._exec(
-                conn, "UPDATE jobs SET dispatched = ? WHERE job_id = ?", (time.time(), job_id)
-            )
-
-    @retrying
-    def undispatched(self, older_than_s: float, limit: int = 100) -> list[str]:
-        """Accepted jobs dispatched (or, never dispatched, created) over ``older_than_s`` ago."""
-        rows = self._all(
-            self._conn(),
-            "SELECT job_id FROM jobs WHERE status = ? AND COALESCE(dispatched, created) < ?"
-            " ORDER BY seq LIMIT ?",
-            (_ACCEPTED, time.time() - older_than_s, limit),
-        )
-        return [r["job_id"] for r in rows]
-
-    # -- worker registry --------------------------------------------------------------
-    @retrying
-    def register_worker(self, worker_id: str, host: str, pid: int) -> None:
-        now = time.time()
-        with self._write() as conn:
-            self._exec(
-                conn,
-                "INSERT INTO workers (worker_id, host, pid, started, heartbeat) "
-                "VALUES (?, ?, ?, ?, ?) ON CONFLICT (worker_id) DO UPDATE SET "
-                "host = excluded.host, pid = excluded.pid, started = excluded.started, "
-                "heartbeat = excluded.heartbeat",
-                (worker_id, host, pid, now, now),
-            )
-
-    @retrying
-    def worker_heartbeat(self, worker_id: str) -> None:
-        with self._write() as conn:
-            self._exec(
-                conn,
-                "UPDATE workers SET heartbeat = ? WHERE worker_id = ?",
-                (time.time(), worker_id),
-            )
-
-    @retrying
-    def unregister_worker(self, worker_id: str) -> None:
-        with self._write() as conn:
-            self._exec(conn, "DELETE FROM workers WHERE worker_id = ?", (worker_id,))
-
-    @retrying
-    def live_workers(self, within_s: float) -> list[WorkerInfo]:
-        rows = self._all(
-            self._conn(),
-            "SELECT * FROM workers WHERE heartbeat >= ? ORDER BY started",
-            (time.time() - within_s,),
-        )
-        return [
-            WorkerInfo(r["worker_id"], r["host"], r["pid"], r["started"], r["heartbeat"])
-            for r in rows
-        ]

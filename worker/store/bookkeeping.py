@@ -1,0 +1,90 @@
+"""The store's bookkeeping beside the jobs: dispatch times (for re-sending lost broker
+messages) and the registry of live worker processes."""
+
+from __future__ import annotations
+
+import time
+from collections.abc import Sequence
+from contextlib import AbstractContextManager
+from typing import TYPE_CHECKING, Any
+
+from worker.contract import JobStatus
+from worker.store.base import WorkerInfo
+from worker.store.retry import retrying
+
+__all__ = ["Bookkeeping"]
+
+Conn = Any
+_ACCEPTED = JobStatus.ACCEPTED.value
+
+
+class Bookkeeping:
+    """Dispatch and worker bookkeeping of :class:`worker.store.sql.SqlJobStore`."""
+
+    retry_s: float
+
+    if TYPE_CHECKING:
+
+        def _conn(self) -> Conn: ...
+        def _write(self) -> AbstractContextManager[Conn]: ...
+        def _exec(self, conn: Conn, query: str, params: Sequence[Any] = ()) -> Any: ...
+        def _all(self, conn: Conn, query: str, params: Sequence[Any] = ()) -> list[Any]: ...
+
+    # -- dispatch bookkeeping ---------------------------------------------------------
+    @retrying
+    def mark_dispatched(self, job_id: str) -> None:
+        with self._write() as conn:
+            self._exec(
+                conn, "UPDATE jobs SET dispatched = ? WHERE job_id = ?", (time.time(), job_id)
+            )
+
+    @retrying
+    def undispatched(self, older_than_s: float, limit: int = 100) -> list[str]:
+        """Accepted jobs dispatched (or, never dispatched, created) over ``older_than_s`` ago."""
+        rows = self._all(
+            self._conn(),
+            "SELECT job_id FROM jobs WHERE status = ? AND COALESCE(dispatched, created) < ?"
+            " ORDER BY seq LIMIT ?",
+            (_ACCEPTED, time.time() - older_than_s, limit),
+        )
+        return [r["job_id"] for r in rows]
+
+    # -- worker registry --------------------------------------------------------------
+    @retrying
+    def register_worker(self, worker_id: str, host: str, pid: int) -> None:
+        now = time.time()
+        with self._write() as conn:
+            self._exec(
+                conn,
+                "INSERT INTO workers (worker_id, host, pid, started, heartbeat) "
+                "VALUES (?, ?, ?, ?, ?) ON CONFLICT (worker_id) DO UPDATE SET "
+                "host = excluded.host, pid = excluded.pid, started = excluded.started, "
+                "heartbeat = excluded.heartbeat",
+                (worker_id, host, pid, now, now),
+            )
+
+    @retrying
+    def worker_heartbeat(self, worker_id: str) -> None:
+        with self._write() as conn:
+            self._exec(
+                conn,
+                "UPDATE workers SET heartbeat = ? WHERE worker_id = ?",
+                (time.time(), worker_id),
+            )
+
+    @retrying
+    def unregister_worker(self, worker_id: str) -> None:
+        with self._write() as conn:
+            self._exec(conn, "DELETE FROM workers WHERE worker_id = ?", (worker_id,))
+
+    @retrying
+    def live_workers(self, within_s: float) -> list[WorkerInfo]:
+        rows = self._all(
+            self._conn(),
+            "SELECT * FROM workers WHERE heartbeat >= ? ORDER BY started",
+            (time.time() - within_s,),
+        )
+        return [
+            WorkerInfo(r["worker_id"], r["host"], r["pid"], r["started"], r["heartbeat"])
+            for r in rows
+        ]
