@@ -28,7 +28,7 @@ __all__ = ["PostgresJobStore"]
 #: Key of the advisory lock held while migrating (any constant unique to dexlab).
 _MIGRATION_LOCK = 0x646578_6C6162
 #: A session idle inside a transaction this long is ended by the server (ms).
-IDLE_IN_TRANSACTION_MS = 30_000
+IDLE_IN_TRANSACTION_MS = 10_000
 
 #: SQLSTATE classes and codes: retry, disk full, unusable.
 _TRANSIENT_STATES = ("08", "40001", "40P01", "55P03", "57P01", "57P02", "57P03", "53300")
