@@ -66,10 +66,12 @@ class Sweeper(threading.Thread):
         self.store = store
         self.dispatcher = dispatcher
         self.worker_id = worker_id
-        self._stop = threading.Event()
+        # Not ``_stop``: that name is threading.Thread's own method (join, is_alive and
+        # the after-fork clean-up in Celery's prefork children call it).
+        self._stopping = threading.Event()
 
     def stop(self) -> None:
-        self._stop.set()
+        self._stopping.set()
 
     def sweep(self) -> int:
         """One pass; the number of jobs sent."""
@@ -85,7 +87,7 @@ class Sweeper(threading.Thread):
         return len(job_ids)
 
     def run(self) -> None:
-        while not self._stop.wait(self.settings.sweep_seconds):
+        while not self._stopping.wait(self.settings.sweep_seconds):
             try:
                 self.sweep()
             except Exception:  # a store or broker hiccup: try again next time

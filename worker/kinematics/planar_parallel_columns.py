@@ -66,6 +66,11 @@ class ArchitectureBatch:
         """1/kappa at (B, ...) points, NaN where unreachable."""
         return self._kernel(x, y, np.nan)
 
+    def extended_inverse_condition(self, x: FloatArray, y: FloatArray) -> FloatArray:
+        """1/kappa at (B, ...) points, extended by 0 where unreachable (1/kappa -> 0 at the
+        reach boundary, so the extension is continuous)."""
+        return self._kernel(x, y, 0.0)
+
     def _kernel(self, x: FloatArray, y: FloatArray, outside: float) -> FloatArray:
         ndim = max(np.ndim(x), np.ndim(y))
         l2, e = self._per_row(self.l2, ndim), self._per_row(self.e, ndim)
@@ -73,7 +78,7 @@ class ArchitectureBatch:
 
     def margin(self, x: FloatArray, y: FloatArray) -> FloatArray:
         """1/kappa - limit, with 1/kappa = 0 where unreachable; >= 0 inside W_kappa0."""
-        value = self._kernel(x, y, 0.0)
+        value = self.extended_inverse_condition(x, y)
         return value - self._per_row(self.limit, value.ndim)
 
 

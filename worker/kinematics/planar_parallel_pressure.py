@@ -123,7 +123,9 @@ def max_condition_limit(
     """(max over delta of 1/kappa0, the delta at the max), eq (17) then eq (7) (Fig. 7).
 
     1501 samples over ``delta_range`` then a bounded Brent refinement (xatol 1e-12).
-    METHODS.md: 30 deg -> 0.52555 at 1.7445; 35 deg -> 0.57672 at 1.9185.
+    METHODS.md: 30 deg -> 0.52555 at 1.7445; 35 deg -> 0.57672 at 1.9185. Only deltas where
+    eq (17)'s point is in reach of both chains count (delta < delta_+, 2.618 to 3.732 by
+    [beta]); (nan, nan) if it is out of reach all over ``delta_range``.
     """
     function = "max_condition_limit"
     try:
@@ -134,12 +136,18 @@ def max_condition_limit(
     if not (math.isfinite(hi) and 1.0 <= lo < hi):
         raise bad_parameter("delta_range", function, "(lo, hi) with 1 <= lo < hi", delta_range)
     deltas = np.linspace(lo, hi, 1501)
-    values = condition_limit_from_pressure_angle(allowable_deg, deltas)
-    best = int(np.argmax(values))
+    values = np.nan_to_num(condition_limit_from_pressure_angle(allowable_deg, deltas), nan=-1.0)
+    best = int(np.argmax(values))  # NaN (out of reach) must not win the argmax
+    if not values[best] > 0.0:
+        return math.nan, math.nan
     bounds = (deltas[max(best - 1, 0)], deltas[min(best + 1, deltas.size - 1)])
     result = minimize_scalar(
-        lambda d: -condition_limit_from_pressure_angle(allowable_deg, float(d)),
+        lambda d: -np.nan_to_num(condition_limit_from_pressure_angle(allowable_deg, float(d)),
+                                 nan=-1.0),
         bounds=bounds, method="bounded", options={"xatol": 1e-12},
     )  # fmt: skip
     best_delta = float(result.x)
-    return condition_limit_from_pressure_angle(allowable_deg, best_delta), best_delta
+    refined = condition_limit_from_pressure_angle(allowable_deg, best_delta)
+    if not refined >= values[best]:  # the refinement left the reach: keep the sample
+        return float(values[best]), float(deltas[best])
+    return refined, best_delta

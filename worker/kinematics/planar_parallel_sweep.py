@@ -105,7 +105,9 @@ def _mesh_means(
     mesh: int,
 ) -> FloatArray:
     """Eq (14) per row, (B,): mean 1/kappa over the mesh x mesh nodes of the rectangles
-    rect = (w, bottom, h) (each (B,)); NaN where not found.
+    rect = (w, bottom, h) (each (B,)); NaN where not found. A node out of reach by a
+    rounding hair (a rectangle touching the reach boundary, where 1/kappa -> 0) counts 0,
+    the continuous extension the boundary search uses.
 
     In a mirror-symmetric mode 1/kappa(-x, y) = 1/kappa(x, y): only the node columns with
     x >= 0 are evaluated and the others counted through their mirror images.
@@ -121,7 +123,7 @@ def _mesh_means(
     x = np.where(ok, (-w)[:, None, None] + (2.0 * w)[:, None, None] * t, 0.0)
     y = np.where(ok, bottom[:, None, None] + h[:, None, None] * np.linspace(0.0, 1.0, mesh)[
         :, None], -1.0)  # fmt: skip
-    total = np.sum(batch.inverse_condition(x, y) * weights, axis=(1, 2))
+    total = np.sum(batch.extended_inverse_condition(x, y) * weights, axis=(1, 2))
     return np.where(found, total / (mesh * mesh), np.nan)
 
 

@@ -5,7 +5,8 @@
 * :func:`design_indices_figure`: S/S_max, the mean 1/kappa and eta against delta
   (Fig. 8), with the optimum and the flat window around it;
 * :func:`normalised_rectangle_figure`: 1/kappa and beta_min over the rectangle W_lambda
-  in the normalised coordinates x/b, (y + H')/b (Fig. 9);
+  in the normalised coordinates x/b, (y + H')/b (Fig. 9; in
+  :mod:`worker.plotting.planar2dof_rectangle`, re-exported here);
 * :func:`rectangle_workspace_figure`: W_lambda drawn inside W_kappa0 over the 1/kappa
   map (Fig. 6).
 
@@ -23,7 +24,6 @@ from numpy.typing import ArrayLike
 
 from worker.plotting.planar2dof_panels import (
     INVERSE_CONDITION,
-    MIN_PRESSURE_ANGLE,
     FloatArray,
     ScalarGrid,
     checked_grid,
@@ -31,6 +31,9 @@ from worker.plotting.planar2dof_panels import (
     contour_panel,
     map_figure_size,
     overlay_legend,
+)
+from worker.plotting.planar2dof_rectangle import (
+    normalised_rectangle_figure as normalised_rectangle_figure,
 )
 from worker.plotting.planar3r_inputs import bad_parameter, plain_text
 
@@ -157,9 +160,16 @@ def design_indices_figure(
     if optimum_delta is not None:
         k = int(np.argmin(np.abs(d - optimum_delta)))
         ax.axvline(optimum_delta, color="0.25", ls=":", lw=1.0)
-        ax.plot(optimum_delta, curves["eta"][k], "D", ms=7, color=_INDEX_COLOURS["eta"],
-                mec="black", zorder=5,
-                label=rf"optimum $\delta$ = {optimum_delta:.4g}, $\eta$ = {curves['eta'][k]:.4f}")
+        ax.plot(
+            optimum_delta,
+            curves["eta"][k],
+            "D",
+            ms=7,
+            color=_INDEX_COLOURS["eta"],
+            mec="black",
+            zorder=5,
+            label=rf"optimum $\delta$ = {optimum_delta:.4g}, $\eta$ = {curves['eta'][k]:.4f}",
+        )
     finite = np.concatenate([v[np.isfinite(v)] for v in curves.values()])
     low = float(finite.min()) if finite.size else 0.0
     ax.set_ylim(max(0.0, min(low - 0.05, 0.6)), 1.02)
@@ -172,78 +182,6 @@ def design_indices_figure(
     fig.legend(loc="outside lower center", ncols=2, fontsize=9.5, frameon=False)
     fig.suptitle(plain_text(title), fontsize=13, fontweight="bold")
     return fig
-
-
-def normalised_rectangle_figure(
-    x_normalised: ArrayLike,
-    y_normalised: ArrayLike,
-    inverse_condition: ArrayLike,
-    min_pressure_angle_deg: ArrayLike,
-    *,
-    inverse_condition_limit: float,
-    allowable_angle_deg: float | None,
-    title: str,
-    subtitle: str = "",
-) -> Figure:
-    """1/kappa and beta_min over W_lambda in x/b, (y + H')/b (the paper's Fig. 9).
-
-    ``x_normalised`` (nx,) in [-1/2, 1/2], ``y_normalised`` (ny,) in [-1/(2 lambda),
-    1/(2 lambda)], maps (ny, nx). The contour 1/kappa = 1/kappa0 and, when given, the
-    contour beta_min = [beta] are drawn in red.
-    """
-    where = "normalised_rectangle_figure"
-    ic = checked_grid(x_normalised, y_normalised, inverse_condition, where)
-    beta = checked_grid(x_normalised, y_normalised, min_pressure_angle_deg, where)
-    width = float(ic.x[-1] - ic.x[0])
-    height = float(ic.y[-1] - ic.y[0])
-    panel_h = min(max(7.0 * height / width, 1.2), 4.5)
-    fig = Figure(figsize=(9.2, 2 * panel_h + 2.4), layout="constrained")
-    axes = fig.subplots(2, 1)
-    limit_label = rf"$1/\kappa$ = {inverse_condition_limit:.4g}"
-    angle_label = rf"$\beta_{{\min}}$ = {allowable_angle_deg:g}°" if allowable_angle_deg else ""
-    panels = (
-        (ic, INVERSE_CONDITION, inverse_condition_limit, limit_label),
-        (beta, MIN_PRESSURE_ANGLE, allowable_angle_deg, angle_label),
-    )
-    for ax, (grid, base, level, label) in zip(axes, panels, strict=True):
-        finite = grid.values[np.isfinite(grid.values)]
-        low = float(finite.min()) if finite.size else float("nan")
-        scale = base.restricted(low, float(finite.max()) if finite.size else low)
-        contour_panel(ax, grid, scale, checked_overlay(where), x_label=r"$\bar x = x / b$",
-                      y_label=r"$\bar y = (y + H') / b$")  # fmt: skip
-        if level is not None and finite.size and low < level < float(finite.max()):
-            lines = ax.contour(grid.x, grid.y, grid.values, levels=[level], colors=_CHOSEN,
-                               linewidths=2.0, zorder=3)  # fmt: skip
-            ax.clabel(lines, fmt={level: label}, fontsize=9, inline=True)
-        for kx, ky in _minima(grid):
-            ax.plot(grid.x[kx], grid.y[ky], "v", ms=10, color=_CHOSEN, mec="white",
-                    clip_on=False, zorder=6)  # fmt: skip
-        unit = "°" if base is MIN_PRESSURE_ANGLE else ""
-        name = base.label.split(" (")[0]
-        ax.set_title(f"{name}: minimum {low:.4g}{unit} (▼)", fontsize=10.5)
-        bar = fig.colorbar(scale.mappable(), ax=ax, pad=0.015)
-        bar.set_label(name, fontsize=10)
-        bar.set_ticks(scale.levels[:: max(1, (len(scale.levels) - 1) // 6)])
-    fig.suptitle(plain_text(title) + (f"\n{plain_text(subtitle)}" if subtitle else ""),
-                 fontsize=12.5, fontweight="bold")  # fmt: skip
-    return fig
-
-
-def _minima(grid: ScalarGrid) -> list[tuple[int, int]]:
-    """(ix, iy) of the smallest value, and of the smallest on the other side of x = 0 when
-    it is as small (to 1e-3): the mirror-symmetric minima of Fig. 9."""
-    values = np.where(np.isfinite(grid.values), grid.values, np.inf)
-    if not np.isfinite(values).any():
-        return []
-    iy, ix = np.unravel_index(int(np.argmin(values)), values.shape)
-    found = [(int(ix), int(iy))]
-    other = grid.x < 0 if grid.x[ix] >= 0 else grid.x > 0
-    if other.any():
-        masked = np.where(other[None, :], values, np.inf)
-        jy, jx = np.unravel_index(int(np.argmin(masked)), values.shape)
-        if masked[jy, jx] <= values[iy, ix] + 1e-3:
-            found.append((int(jx), int(jy)))
-    return found
 
 
 def _view_around(

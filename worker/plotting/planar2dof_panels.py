@@ -262,14 +262,15 @@ def contour_panel(
         ax.plot(overlay.joints[:, 0], overlay.joints[:, 1], ls="none", zorder=6, **_JOINT)
     if overlay.isotropic_point is not None:
         ax.plot(*overlay.isotropic_point, ls="none", zorder=6, **_ISOTROPIC)
+    x0, x1, y0, y1 = view if view is not None else _extent(grid)
     if overlay.points is not None:
         pts = overlay.points
         ax.plot(pts[:, 0], pts[:, 1], ls="none", zorder=7, **_POINT)
         for (px, py), label in zip(pts, overlay.labels, strict=True):
-            ax.annotate(plain_text(label), (px, py), xytext=(7, 7), textcoords="offset points",
-                        fontsize=10, fontweight="bold", bbox=_LABEL_BOX, zorder=8,
-                        annotation_clip=False)  # fmt: skip
-    x0, x1, y0, y1 = view if view is not None else _extent(grid)
+            if x0 <= px <= x1 and y0 <= py <= y1:  # a label far outside would wreck the layout
+                ax.annotate(plain_text(label), (px, py), xytext=(7, 7),
+                            textcoords="offset points", fontsize=10, fontweight="bold",
+                            bbox=_LABEL_BOX, zorder=8, annotation_clip=False)  # fmt: skip
     ax.set_xlim(x0, x1)
     ax.set_ylim(y0, y1)
     ax.set_aspect("equal")

@@ -27,6 +27,7 @@ if TYPE_CHECKING:
     from matplotlib.axes import Axes
 
 __all__ = [
+    "FLAT_RANGE",
     "DesignMarker",
     "SubDesignSpace",
     "design_space_figure",
@@ -35,6 +36,8 @@ __all__ = [
 ]
 
 _LEGEND_LIMIT = 10  # more sub-design spaces than this: a colour bar over beta instead
+#: An index map varying by less than this (relative) is drawn flat, without contours.
+FLAT_RANGE = 1e-6
 _MARKER_STYLES = {
     "optimum": {"marker": "o", "ms": 9, "mfc": "white", "mec": "black", "mew": 1.6},
     "twin": {"marker": "o", "ms": 8, "mfc": "none", "mec": "black", "mew": 1.4, "ls": "none"},
@@ -93,9 +96,11 @@ def _markers(ax: Axes, markers: Sequence[DesignMarker]) -> list[Artist]:
 
 def _space_label(space: SubDesignSpace, kind: str) -> str:
     gamma = "" if space.gamma_deg == 0 else rf", $\gamma$ = {space.gamma_deg:g}°"
-    return (rf"$\beta$ = {space.beta_deg:g}°{gamma}: $|\alpha_1-\alpha_2| \leq$ "
-            rf"{space.d1_deg:.4g}°, $|\alpha_1+\alpha_2-180°| \leq$ "
-            rf"{space.d2_deg:.4g}°{kind}")
+    return (
+        rf"$\beta$ = {space.beta_deg:g}°{gamma}: $|\alpha_1-\alpha_2| \leq$ "
+        rf"{space.d1_deg:.4g}°, $|\alpha_1+\alpha_2-180°| \leq$ "
+        rf"{space.d2_deg:.4g}°{kind}"
+    )
 
 
 def _draw_space(ax: Axes, space: SubDesignSpace, color: Any, outline_only: bool) -> Artist:
@@ -189,8 +194,16 @@ def design_space_figure(
     ax.grid(alpha=0.25)
     ax.set_title(plain_text(subtitle), fontsize=10, color="0.25")
     fig.suptitle(plain_text(title), fontsize=12.5, fontweight="bold")
-    handles.append(Line2D([], [], color="0.6", lw=0.8, ls=(0, (4, 3)),
-                          label=r"$\alpha_1 = \alpha_2$ and $\alpha_1 + \alpha_2 = 180°$"))
+    handles.append(
+        Line2D(
+            [],
+            [],
+            color="0.6",
+            lw=0.8,
+            ls=(0, (4, 3)),
+            label=r"$\alpha_1 = \alpha_2$ and $\alpha_1 + \alpha_2 = 180°$",
+        )
+    )
     fig.legend(handles=handles, loc="outside lower center", ncols=1, fontsize=9, frameon=False)
     return fig
 
@@ -208,7 +221,8 @@ def index_distribution_figure(
     """The conditioning index over one sub-design space (the paper's Fig. 6).
 
     alpha1_deg, alpha2_deg, values: (p, q) node grids spanning the rectangle (NaN: the
-    design misses part of the workspace). Contours and the marked designs on top.
+    design misses part of the workspace). Contours and the marked designs on top; an index
+    flat to :data:`FLAT_RANGE` is drawn in one colour on a scale around its value.
     """
     where = "index_distribution_figure"
     a1, a2 = np.asarray(alpha1_deg, dtype=float), np.asarray(alpha2_deg, dtype=float)
@@ -224,12 +238,15 @@ def index_distribution_figure(
     finite = grid[np.isfinite(grid)]
     top = float(finite.max()) if finite.size else 1.0
     bottom = float(finite.min()) if finite.size else 0.0
-    norm = Normalize(bottom, top if top > bottom else bottom + 1e-9)
+    varies = top - bottom > FLAT_RANGE * max(abs(top), abs(bottom), 1.0)
+    # A flat index (to rounding) gets a readable scale around its value, in one colour.
+    pad = 0.0 if varies else max(0.01 * abs(top), 1e-3)
+    norm = Normalize(bottom - pad, top + pad)
     cmap = colormaps["viridis"].with_extremes(bad=NO_SOLUTION_COLOR)
     masked = np.ma.masked_invalid(grid)
     ax.pcolormesh(a1, a2, masked, shading="gouraud", cmap=cmap, norm=norm, rasterized=True,
                   zorder=2)  # fmt: skip
-    if finite.size and top > bottom:
+    if finite.size and varies:
         lines = ax.contour(a1, a2, masked, levels=8, colors="white", linewidths=0.8, zorder=3)
         ax.clabel(lines, fmt="%.3f", fontsize=8)
     outline = np.concatenate([a1[0, :], a1[:, -1], a1[-1, ::-1], a1[::-1, 0]])

@@ -22,7 +22,6 @@ from worker.jobs.planar2dof.architecture import (
     describe_architecture,
     map_grid,
 )
-from worker.jobs.planar2dof.discretisation import BOUNDARY_COLUMNS, BOUNDARY_ROWS
 from worker.jobs.planar2dof.kappa_region import KappaRegionSection, kappa_region_section
 from worker.jobs.planar2dof.paper_errata import conditioning_map_errata_notes
 from worker.jobs.planar2dof.point_values import point_entries, unreachable_note
@@ -117,6 +116,8 @@ def _isotropic_entry(arch: pp.Architecture, mode: tuple[int, int]) -> dict[str, 
     point = np.array([x, y])
     value = float(pp.inverse_condition(arch, point, mode))
     beta = float(np.degrees(np.min(pp.pressure_angles(arch, point, mode))))
+    if not (math.isfinite(value) and math.isfinite(beta)):  # out of reach by a rounding hair
+        return None
     degenerate = not beta >= DEGENERATE_PRESSURE_ANGLE_DEG
     return {
         "x": x,
@@ -165,12 +166,7 @@ def _result(
         "points": entries,
         "discretisation": {
             "grid": grid.describe(),
-            "w_kappa0": None if region is None else {
-                "method": "vertical 1-D root searches (Illinois), the lowest run of each column",
-                "columns": BOUNDARY_COLUMNS,
-                "rows": BOUNDARY_ROWS,
-                "x_half_span": float(region.region.x[-1]),
-            },
+            "w_kappa0": None if region is None else region.search,
             "points": "exact (closed forms, eqs 2, 7, 15)",
             "isotropic_point": ISOTROPIC_POINT_METHOD,
         },
@@ -300,4 +296,3 @@ def _data(
     progress.report(95.0, "data files")
     npz = npz_artifact(NPZ_NAME, arrays, "Conditioning map (NumPy arrays)")
     return csv, npz
-

@@ -33,6 +33,16 @@ class KappaRegionSection:
     notes: list[str]
     region: pp.KappaRegion
 
+    @property
+    def search(self) -> dict[str, Any]:
+        """How W_kappa0 was searched, for the result's ``discretisation``."""
+        return {
+            "method": "vertical 1-D root searches (Illinois), the lowest run of each column",
+            "columns": BOUNDARY_COLUMNS,
+            "rows": BOUNDARY_ROWS,
+            "x_half_span": float(self.region.x[-1]),
+        }
+
 
 def kappa_region_section(
     arch: pp.Architecture,

@@ -14,8 +14,6 @@ import math
 from dataclasses import dataclass
 from typing import Any
 
-import numpy as np
-
 from worker.contract import JobContext, JobOutcome
 from worker.jobs.planar2dof.design_rows import (
     Design,
@@ -127,15 +125,22 @@ def _sweep(spec: OptimisationSpec, limit: float, progress: ProgressReporter) -> 
 def _single(spec: OptimisationSpec, limit: float, progress: ProgressReporter) -> SweepOutcome:
     """One delta; S_max over the paper's range at its step (and this delta)."""
     assert spec.delta is not None
-    reference = _run_sweep(spec, limit, sweep_deltas(*DEFAULT_DELTA_RANGE, DEFAULT_DELTA_STEP),
-                           S_MAX_MESH, progress, (5.0, 72.0, "S_max over delta in [1, 2.5]"))
+    reference = _run_sweep(
+        spec,
+        limit,
+        sweep_deltas(*DEFAULT_DELTA_RANGE, DEFAULT_DELTA_STEP),
+        S_MAX_MESH,
+        progress,
+        (5.0, 72.0, "S_max over delta in [1, 2.5]"),
+    )
     progress.report(74.0, f"design at delta = {spec.delta:g}")
     single = _run_sweep(spec, limit, [spec.delta], spec.mean_mesh, progress,
                         (74.0, 80.0, f"design at delta = {spec.delta:g}"))  # fmt: skip
     row = single.rows[0]
-    s_max = float(np.nanmax([reference.S_max, row.rectangle.S]))
-    if not math.isfinite(s_max):
-        return SweepOutcome((row,), math.nan, None, None, row.rectangle.message)
+    areas = [s for s in (reference.S_max, row.rectangle.S) if math.isfinite(s)]
+    s_max = max(areas, default=math.nan)
+    if not row.rectangle.found:  # no design at this delta, whatever S_max is
+        return SweepOutcome((row,), s_max, None, None, row.rectangle.message)
     row = rescaled_row(row, s_max)
     notes: tuple[str, ...] = ()
     if not reference.S_max >= row.rectangle.S:  # also when [1, 2.5] has no rectangle

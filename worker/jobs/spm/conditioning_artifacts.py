@@ -42,8 +42,8 @@ def design_label(design: sp.SpmDesign) -> str:
 def _workspace_text(spec: ConditioningMapSpec) -> str:
     ws = spec.workspace
     lo, hi = ws.torsion_deg
-    torsion = "full torsion turn" if ws.full_turn else f"torsion [{lo:g}, {hi:g}]°"
-    return f"cone of {2 * ws.tilt_max_deg:g}° opening, {torsion}, branch {spec.branch:+d}"
+    torsion = "full torsion turn" if ws.full_turn else f"torsion [{lo:.10g}, {hi:.10g}]°"
+    return f"cone of {2 * ws.tilt_max_deg:.10g}° opening, {torsion}, branch {spec.branch:+d}"
 
 
 def conditioning_plots(
@@ -101,24 +101,29 @@ def conditioning_data(
     given = np.asarray([o["psi_deg"] for o in orientations], dtype=float).reshape(-1, 3)
     given_inverse = np.array([np.nan if o["inverse_condition"] is None else o["inverse_condition"]
                               for o in orientations], dtype=float)  # fmt: skip
-    npz = npz_artifact(NPZ_NAME, {
-        "design_deg": np.array([spec.alpha1_deg, spec.alpha2_deg, spec.beta_deg,
-                                spec.gamma_deg]),
-        "branch": np.array(spec.branch),
-        "samples_deg": psi_deg,
-        "real": indices.real,
-        "theta_deg": theta_deg,
-        "inverse_condition": inverse,
-        "condition_number": kappa,
-        "det_a": indices.det_a,
-        "map_azimuth_deg": maps.azimuth_deg,
-        "map_tilt_deg": maps.tilt_deg,
-        "map_torsions_deg": maps.torsions_deg,
-        "map_inverse_condition": maps.values,
-        "sweep_psi3_deg": sweeps.psi3_deg,
-        "sweep_azimuth_tilt_deg": sweeps.azimuth_tilt_deg,
-        "sweep_inverse_condition": sweeps.values,
-        "orientations_deg": given,
-        "orientations_inverse_condition": given_inverse,
-    }, "Conditioning map (NumPy arrays)")
+    npz = npz_artifact(
+        NPZ_NAME,
+        {
+            "design_deg": np.array(
+                [spec.alpha1_deg, spec.alpha2_deg, spec.beta_deg, spec.gamma_deg]
+            ),
+            "branch": np.array(spec.branch),
+            "samples_deg": psi_deg,
+            "real": indices.real,
+            "theta_deg": theta_deg,
+            "inverse_condition": inverse,
+            "condition_number": kappa,
+            "det_a": indices.det_a,
+            "map_azimuth_deg": maps.azimuth_deg,
+            "map_tilt_deg": maps.tilt_deg,
+            "map_torsions_deg": maps.torsions_deg,
+            "map_inverse_condition": maps.values,
+            "sweep_psi3_deg": sweeps.psi3_deg,
+            "sweep_azimuth_tilt_deg": sweeps.azimuth_tilt_deg,
+            "sweep_inverse_condition": sweeps.values,
+            "orientations_deg": given,
+            "orientations_inverse_condition": given_inverse,
+        },
+        "Conditioning map (NumPy arrays)",
+    )
     return csv, npz

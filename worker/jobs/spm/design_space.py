@@ -111,8 +111,14 @@ def run_design_space(spec: DesignSpaceSpec, ctx: JobContext) -> JobOutcome:
         progress.report(50.0, f"index over the rectangle of beta = {spec.index_map.beta_deg:g}")
         samples, layout = workspace_samples(spec.workspace)
         beta = spec.index_map.beta_deg
-        dist = index_distribution(ws, samples, beta, spec.gamma_for(beta),
-                                  spec.index_map.points_per_side, spec.index_map.branch)
+        dist = index_distribution(
+            ws,
+            samples,
+            beta,
+            spec.gamma_for(beta),
+            spec.index_map.points_per_side,
+            spec.index_map.branch,
+        )
         result["index_map"] = index_distribution_entry(dist, samples)
         result["sampling"] = sampling_entry(layout)
     notes = _notes(result) + design_space_errata_notes(spec, result)
@@ -175,9 +181,9 @@ def _plots(
 ) -> tuple[Artifact, ...]:
     ws = spec.workspace
     lo, hi = ws.torsion_deg
-    torsion = "full torsion turn" if ws.full_turn else f"torsion [{lo:g}, {hi:g}]°"
+    torsion = "full torsion turn" if ws.full_turn else f"torsion [{lo:.10g}, {hi:.10g}]°"
     gamma = "gamma = beta" if spec.identical_platforms else f"gamma = {spec.gamma_for(0.0):g}°"
-    subtitle = f"cone of {2 * ws.tilt_max_deg:g}° opening, {torsion}, {gamma}"
+    subtitle = f"cone of {2 * ws.tilt_max_deg:.10g}° opening, {torsion}, {gamma}"
     spaces = [plots.SubDesignSpace(r["beta_deg"], r["gamma_deg"], r["D1_deg"], r["D2_deg"])
               for r in rows]  # fmt: skip
     fig = plots.design_space_figure(spaces, title="Design space: feasible link angles per "

@@ -11,13 +11,18 @@ from typing import Annotated, Literal
 
 from pydantic import Field, ValidationInfo, field_validator
 
+from worker.jobs.numeric_ranges import MIN_STEP
 from worker.jobs.spm.workspace_spec import (
+    ANGLE_MARGIN_DEG,
+    ANGLE_RANGE,
+    MAX_ANGLE_DEG,
     AngleDeg,
     Branch,
     FrozenSpec,
     GammaDeg,
     WorkspaceSpec,
     entries,
+    narrower_than,
 )
 
 __all__ = [
@@ -25,6 +30,7 @@ __all__ = [
     "INDEX_MAP_POINTS",
     "MAX_EVALUATIONS_PER_START",
     "MAX_STARTS",
+    "MIN_SINGULARITY_TOLERANCE",
     "PARAMETERS",
     "SCREEN_PER_START",
     "OptimisationBounds",
@@ -42,6 +48,8 @@ INDEX_MAP_POINTS = 31
 #: Candidate designs screened per start to seed it from the design space (the
 #: kinematics' ``screen``; METHODS.md §3: the optima sit on the design-space edges).
 SCREEN_PER_START = 32
+#: Least lambda of eq 30 (|det A| >= 1e-6): the solver's penalty divides by it.
+MIN_SINGULARITY_TOLERANCE = 1e-12
 
 _Range = Annotated[tuple[float, float], entries(2, "a search range needs two angles [lo, hi]")]
 
@@ -51,10 +59,14 @@ class OptimisationBounds(FrozenSpec):
     searched over the design-space rectangle of eq 19."""
 
     beta_deg: _Range | None = Field(
-        None, description="[lo, hi] of beta, 0 < lo < hi < 180 (default [1, 179])."
+        None,
+        description=f"[lo, hi] of beta in degrees, both {ANGLE_RANGE}, hi - lo at least "
+        f"{MIN_STEP:g} (default [1, 179]).",
     )
     gamma_deg: _Range | None = Field(
-        None, description="[lo, hi] of gamma, 0 <= lo < hi < 180 (default [0, 179])."
+        None,
+        description=f"[lo, hi] of gamma in degrees, 0 <= lo, hi <= {MAX_ANGLE_DEG:.10g}, hi - lo "
+        f"at least {MIN_STEP:g} (default [0, 179]).",
     )
 
     @field_validator("beta_deg", "gamma_deg")
@@ -62,15 +74,24 @@ class OptimisationBounds(FrozenSpec):
     def _ordered(cls, value: tuple[float, float] | None) -> tuple[float, float] | None:
         if value is not None:
             lo, hi = value
-            if not (0.0 <= lo < hi < 180.0):
-                raise ValueError(f"[{lo:g}, {hi:g}] must satisfy 0 <= lo < hi < 180")
+            if not (0.0 <= lo < hi <= MAX_ANGLE_DEG):
+                raise ValueError(
+                    f"[{lo:g}, {hi:g}] must satisfy 0 <= lo < hi <= {MAX_ANGLE_DEG:.10g}"
+                )
+            if narrower_than(lo, hi, MIN_STEP):
+                raise ValueError(
+                    f"[{lo:.10g}, {hi:.10g}] spans {hi - lo:.6g}°, less than {MIN_STEP:g}°: "
+                    "hold the angle instead (drop it from free and give its *_deg)"
+                )
         return value
 
     @field_validator("beta_deg")
     @classmethod
     def _positive_beta(cls, value: tuple[float, float] | None) -> tuple[float, float] | None:
-        if value is not None and value[0] <= 0.0:
-            raise ValueError(f"beta's lower bound {value[0]:g} must be greater than 0")
+        if value is not None and value[0] < ANGLE_MARGIN_DEG:
+            raise ValueError(
+                f"beta's lower bound {value[0]:g} must be at least {ANGLE_MARGIN_DEG:g}"
+            )
         return value
 
 
@@ -79,7 +100,7 @@ _FREE_DESCRIPTION = (
     "alpha1, alpha2, beta, as the paper's Tables 1-2). Every other parameter is held at "
     "its *_deg input (gamma defaults to 0). With identical_platforms, gamma follows beta."
 )
-_HELD = "Held value in degrees (0 < . < 180) when {name} is not free; omit when it is free."
+_HELD = "Held value in degrees, " + ANGLE_RANGE + ", when {name} is not free; omit when it is free."
 
 
 class OptimisationSpec(FrozenSpec):
@@ -112,8 +133,8 @@ class OptimisationSpec(FrozenSpec):
     )
     gamma_deg: GammaDeg | None = Field(
         None,
-        description="Held gamma in degrees (0 <= . < 180; default 0, the coaxial active "
-        "ball joint) when gamma is not free and the platforms are not identical.",
+        description=f"Held gamma in degrees (0 to {MAX_ANGLE_DEG:.10g}; default 0, the coaxial "
+        "active ball joint) when gamma is not free and the platforms are not identical.",
     )
     bounds: OptimisationBounds = Field(
         default_factory=OptimisationBounds,
@@ -137,10 +158,11 @@ class OptimisationSpec(FrozenSpec):
     )
     singularity_tolerance: float | None = Field(
         None,
-        gt=0,
+        ge=MIN_SINGULARITY_TOLERANCE,
         lt=1,
-        description="lambda of eq 30: require det(A)^2 >= lambda at every sample (type-II "
-        "singularity margin; |det A| <= 1). Omit for none.",
+        description="lambda of eq 30, at least 1e-12 and less than 1: require det(A)^2 >= "
+        "lambda at every sample (type-II singularity margin; |det A| <= 1; below 1e-12 the "
+        "margin is lost in rounding). Omit for none.",
     )
     seed: int = Field(
         0, ge=0, le=2**32 - 1, description="Seed of the random starts (same seed, same result)."

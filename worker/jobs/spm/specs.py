@@ -4,25 +4,26 @@ Every model is frozen with ``extra="forbid"`` and rejects NaN and infinity; the 
 descriptions become the public JSON schema served at ``GET /v1/processes/{id}``. Angles
 are in degrees. Optional inputs default to ``None`` and are resolved by properties
 (:attr:`ConditioningMapSpec.map_torsions` ...), so that a spec dumped to JSON (as the job
-store keeps it) validates again unchanged. The optimisation's inputs are in
+store keeps it) validates again unchanged. The design space's inputs are in
+:mod:`worker.jobs.spm.design_space_spec` (re-exported here), the optimisation's in
 :mod:`worker.jobs.spm.optimisation_spec`.
 """
 
 from __future__ import annotations
 
-import math
-from typing import Annotated, Any
+from typing import Annotated
 
-from pydantic import (
-    Discriminator,
-    Field,
-    Tag,
-    ValidationInfo,
-    field_validator,
-    model_validator,
+from pydantic import Field, field_validator
+
+from worker.jobs.spm.design_space_spec import (
+    MAX_BETAS,
+    BetaRange,
+    DesignSpaceSpec,
+    IndexMapSpec,
 )
-
 from worker.jobs.spm.workspace_spec import (
+    ANGLE_RANGE,
+    MAX_ANGLE_DEG,
     AngleDeg,
     Branch,
     FrozenSpec,
@@ -48,7 +49,6 @@ __all__ = [
 MAX_ORIENTATIONS = 1000
 MAX_MAP_PANELS = 6
 MAX_SWEEPS = 6
-MAX_BETAS = 721
 #: Points of a torsion sweep: psi3 from 0 to 360° every 1° (ends included).
 SWEEP_POINTS = 361
 #: psi1 of the paper's Fig. 7 (its three curves are at psi2 = 15, 30, 45 in a 45° cone).
@@ -68,17 +68,19 @@ def _check_psi(where: str, psi1: float, psi2: float, psi3: float | None = None) 
 
 
 class _Design(FrozenSpec):
-    alpha1_deg: AngleDeg = Field(..., description="Base-side link angle alpha1 (0 < . < 180).")
+    alpha1_deg: AngleDeg = Field(
+        ..., description=f"Base-side link angle alpha1 in degrees, {ANGLE_RANGE}."
+    )
     alpha2_deg: AngleDeg = Field(
-        ..., description="Platform-side link angle alpha2 (0 < . < 180)."
+        ..., description=f"Platform-side link angle alpha2 in degrees, {ANGLE_RANGE}."
     )
     beta_deg: AngleDeg = Field(
-        ..., description="Half-angle beta of the mobile pyramid (0 < . < 180)."
+        ..., description=f"Half-angle beta of the mobile pyramid in degrees, {ANGLE_RANGE}."
     )
     gamma_deg: GammaDeg = Field(
         0.0,
-        description="Half-angle gamma of the base pyramid (0 <= . < 180); 0 (the default) "
-        "is the coaxial-input 'active ball joint' of the paper's Fig. 2.",
+        description=f"Half-angle gamma of the base pyramid in degrees, 0 to {MAX_ANGLE_DEG:.10g}; "
+        "0 (the default) is the coaxial-input 'active ball joint' of the paper's Fig. 2.",
     )
 
 
@@ -100,8 +102,7 @@ class ConditioningMapSpec(_Design):
     workspace: WorkspaceSpec = Field(..., description="The prescribed workspace and its sampling.")
     branch: Branch = Field(
         -1,
-        description="The sign of (u_i x w_i) . v_i kept on every leg: -1 (the paper's eq 29) "
-        "or 1.",
+        description="The sign of (u_i x w_i) . v_i kept on every leg: -1 (the paper's eq 29) or 1.",
     )
     orientations: (
         tuple[Annotated[Orientation, entries(3, "an orientation needs [psi1, psi2, psi3]")], ...]
@@ -124,8 +125,7 @@ class ConditioningMapSpec(_Design):
     )
     map_grid: MapGrid = Field(default_factory=MapGrid, description="Resolution of the maps.")
     torsion_sweeps: (
-        tuple[Annotated[AzimuthTilt, entries(2, "a torsion sweep needs [psi1, psi2]")], ...]
-        | None
+        tuple[Annotated[AzimuthTilt, entries(2, "a torsion sweep needs [psi1, psi2]")], ...] | None
     ) = Field(
         None,
         min_length=1,
@@ -181,120 +181,3 @@ class ConditioningMapSpec(_Design):
             return self.torsion_sweeps
         tilt = self.workspace.tilt_max_deg
         return tuple((FIG_7_AZIMUTH_DEG, tilt * k / 3.0) for k in (1, 2, 3))
-
-
-class BetaRange(FrozenSpec):
-    """beta = start, start + step, ... up to stop (included when it lands on a step)."""
-
-    start: AngleDeg = Field(..., description="First beta in degrees (0 < . < 180).")
-    stop: AngleDeg = Field(..., description="Last beta in degrees (0 < . < 180), >= start.")
-    step: float = Field(..., gt=0, le=180, description="Step in degrees (> 0).")
-
-    @model_validator(mode="after")
-    def _ordered(self) -> BetaRange:
-        if self.stop < self.start:
-            raise ValueError(f"stop {self.stop:g} must not be less than start {self.start:g}")
-        if self.count > MAX_BETAS:
-            raise ValueError(
-                f"the range holds {self.count} betas, more than {MAX_BETAS}; use a larger step"
-            )
-        return self
-
-    @property
-    def count(self) -> int:
-        return math.floor((self.stop - self.start) / self.step + 1e-9) + 1
-
-    def values(self) -> tuple[float, ...]:
-        """The betas in degrees, rounded to 12 digits."""
-        return tuple(round(self.start + i * self.step, 12) for i in range(self.count))
-
-
-def _beta_kind(value: Any) -> str | None:
-    if isinstance(value, dict | BetaRange):
-        return "range"
-    if isinstance(value, list | tuple):
-        return "list"
-    return None
-
-
-BetaSelection = Annotated[
-    Annotated[tuple[AngleDeg, ...], Tag("list")] | Annotated[BetaRange, Tag("range")],
-    Discriminator(
-        _beta_kind,
-        custom_error_type="beta_selection",
-        custom_error_message="beta_deg must be a list of angles [b1, b2, ...] or a range "
-        "{'start', 'stop', 'step'}, in degrees",
-    ),
-]
-
-
-class IndexMapSpec(FrozenSpec):
-    """The conditioning index over one beta's design space (the paper's Fig. 6)."""
-
-    beta_deg: AngleDeg = Field(..., description="The beta (deg) whose rectangle is mapped.")
-    points_per_side: int = Field(
-        31,
-        ge=3,
-        le=101,
-        description="Designs per side of the (s, t) grid spanning the rectangle, "
-        "a1 - a2 = s D1, a1 + a2 - 180 = t D2, s, t in [-1, 1] (default 31).",
-    )
-    branch: Branch = Field(-1, description="The branch sign (eq 29; the paper's -1).")
-
-
-class DesignSpaceSpec(FrozenSpec):
-    """Inputs of ``spm-design-space``: the feasible (alpha1, alpha2) rectangle per beta."""
-
-    workspace: WorkspaceSpec = Field(
-        ...,
-        description="The prescribed workspace. The design space holds on the continuous "
-        "workspace; its samples are used only by 'index_map'.",
-    )
-    identical_platforms: bool = Field(
-        False, description="gamma = beta for every beta (the paper's Table 3). Not with gamma_deg."
-    )
-    gamma_deg: GammaDeg | None = Field(
-        None,
-        description="Base pyramid half-angle gamma (deg, default 0). Not with "
-        "identical_platforms.",
-    )
-    beta_deg: BetaSelection = Field(
-        ...,
-        description="The betas (deg): a list [b1, b2, ...] (at most 721) or a range "
-        "{'start', 'stop', 'step'}.",
-    )
-    index_map: IndexMapSpec | None = Field(
-        None,
-        description="Also map mean(1/kappa^2) (eq 28) over the workspace samples across "
-        "one beta's rectangle (the paper's Fig. 6). Omit for none.",
-    )
-    plots: bool = Field(True, description="Render the PNG/SVG plots. false: data files only.")
-
-    @field_validator("beta_deg")
-    @classmethod
-    def _bounded_list(cls, value: tuple[float, ...] | BetaRange) -> tuple[float, ...] | BetaRange:
-        if isinstance(value, tuple) and not 1 <= len(value) <= MAX_BETAS:
-            raise ValueError(f"beta_deg holds {len(value)} angles; give 1 to {MAX_BETAS}")
-        return value
-
-    @field_validator("gamma_deg")
-    @classmethod
-    def _one_gamma(cls, value: float | None, info: ValidationInfo) -> float | None:
-        if value is not None and info.data.get("identical_platforms"):
-            raise ValueError(
-                "gamma_deg and identical_platforms exclude each other: with identical "
-                "platforms gamma = beta for every beta"
-            )
-        return value
-
-    @property
-    def betas(self) -> tuple[float, ...]:
-        """The betas in degrees, in the order given (a range: increasing)."""
-        value = self.beta_deg
-        return value.values() if isinstance(value, BetaRange) else value
-
-    def gamma_for(self, beta: float) -> float:
-        """gamma (deg) at ``beta``: beta with identical platforms, else gamma_deg or 0."""
-        if self.identical_platforms:
-            return beta
-        return 0.0 if self.gamma_deg is None else self.gamma_deg

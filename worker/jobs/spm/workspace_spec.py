@@ -3,19 +3,27 @@
 A workspace is a pointing cone of opening 2T (tilt psi2 in [0, T], every azimuth psi1)
 with a torsion range psi3 in [lo, hi] (``[0, 360]`` is a full turn), sampled as
 METHODS.md §3 states by default (the paper's 4 x 12 x 3 = 144 orientations, read
-literally). Angles are in degrees; the kinematics converts to radians.
+literally). Angles are in degrees; the kinematics converts to radians. Link and pyramid
+angles and the cone's half-opening stay at least :data:`ANGLE_MARGIN_DEG` away from 0 and
+180 (where a leg or the cone degenerates and the conversion to radians can round onto
+the excluded end); a torsion range spans at least ``MIN_STEP`` (1e-6) degrees.
 """
 
 from __future__ import annotations
 
+import math
 from typing import Annotated, Literal
 
 from pydantic import Field, field_validator
 
+from worker.jobs.numeric_ranges import MIN_STEP
 from worker.jobs.spec_base import FrozenSpec, entries
 
 __all__ = [
+    "ANGLE_MARGIN_DEG",
+    "ANGLE_RANGE",
     "FULL_TURN_DEG",
+    "MAX_ANGLE_DEG",
     "MAX_SAMPLE_COUNT",
     "AngleDeg",
     "Branch",
@@ -24,6 +32,7 @@ __all__ = [
     "SampleCounts",
     "WorkspaceSpec",
     "entries",
+    "narrower_than",
 ]
 
 FULL_TURN_DEG = 360.0
@@ -32,12 +41,24 @@ FULL_TURN_TOLERANCE_DEG = 1e-9
 #: Most samples along one of psi1, psi2, psi3 (the product is bounded by the cost limits).
 MAX_SAMPLE_COUNT = 360
 
-#: A link or pyramid angle in degrees, strictly between 0 and 180.
-AngleDeg = Annotated[float, Field(gt=0, lt=180)]
-#: The base pyramid's half-angle in degrees, 0 (coaxial inputs) up to 180 (excluded).
-GammaDeg = Annotated[float, Field(ge=0, lt=180)]
+#: How close (deg) a link or pyramid angle, or the cone's half-opening, may come to the
+#: degenerate 0 and 180.
+ANGLE_MARGIN_DEG = 1e-6
+MAX_ANGLE_DEG = 180.0 - ANGLE_MARGIN_DEG
+#: The range of link and pyramid angles, in words.
+ANGLE_RANGE = f"in [{ANGLE_MARGIN_DEG:g}, 180 - {ANGLE_MARGIN_DEG:g}]"
+#: A link or pyramid angle in degrees, in [1e-6, 180 - 1e-6].
+AngleDeg = Annotated[float, Field(ge=ANGLE_MARGIN_DEG, le=MAX_ANGLE_DEG)]
+#: The base pyramid's half-angle in degrees, 0 (coaxial inputs) up to 180 - 1e-6.
+GammaDeg = Annotated[float, Field(ge=0, le=MAX_ANGLE_DEG)]
 #: The sign of (u_i x w_i) . v_i kept on every leg (eq 29: the paper's -1).
 Branch = Literal[-1, 1]
+
+
+def narrower_than(lo: float, hi: float, width: float) -> bool:
+    """Whether [lo, hi] spans less than ``width`` beyond the rounding of its ends (a range
+    typed as [lo, lo + width] is not)."""
+    return hi - lo < width - 2.0 * math.ulp(max(abs(lo), abs(hi)))
 
 
 class SampleCounts(FrozenSpec):
@@ -72,7 +93,8 @@ class SampleCounts(FrozenSpec):
 
 
 _TORSION_DESCRIPTION = (
-    "Torsion range [lo, hi] of psi3 in degrees, -360 <= lo < hi <= 360 and hi - lo <= 360. "
+    f"Torsion range [lo, hi] of psi3 in degrees, -360 <= lo < hi <= 360 and {MIN_STEP:g} <= "
+    "hi - lo <= 360. "
     "[0, 360] (the default) is a full turn, with lo as the torsion origin of the samples; "
     "the paper's Table 3 uses a 30° range, [-15, 15]."
 )
@@ -83,10 +105,10 @@ class WorkspaceSpec(FrozenSpec):
 
     tilt_max_deg: float = Field(
         ...,
-        gt=0,
-        lt=180,
-        description="Half-opening T of the pointing cone in degrees (0 < T < 180): tilt psi2 "
-        "in [0, T] at every azimuth. A 'cone of 120° opening' is T = 60.",
+        ge=ANGLE_MARGIN_DEG,
+        le=MAX_ANGLE_DEG,
+        description="Half-opening T of the pointing cone in degrees, in [1e-6, 180 - 1e-6]: "
+        "tilt psi2 in [0, T] at every azimuth. A 'cone of 120° opening' is T = 60.",
     )
     torsion_deg: Annotated[
         tuple[float, float], entries(2, "torsion_deg needs two angles [lo, hi]")
@@ -107,6 +129,11 @@ class WorkspaceSpec(FrozenSpec):
                 raise ValueError(f"torsion_deg: {name} {angle:g} is outside [-360, 360]")
         if not lo < hi:
             raise ValueError(f"torsion_deg: lo {lo:g} must be less than hi {hi:g}")
+        if narrower_than(lo, hi, MIN_STEP):
+            raise ValueError(
+                f"torsion_deg: the range [{lo:.10g}, {hi:.10g}] spans {hi - lo:.6g}°, less "
+                f"than {MIN_STEP:g}°; give a wider range"
+            )
         if hi - lo > FULL_TURN_DEG + FULL_TURN_TOLERANCE_DEG:
             raise ValueError(
                 f"torsion_deg: hi - lo = {hi - lo:g} exceeds a full turn (360); use [lo, lo + 360]"

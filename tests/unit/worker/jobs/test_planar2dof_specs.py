@@ -105,9 +105,12 @@ def test_sweep_deltas_end_on_hi(lo: float, hi: float, step: float, expected: int
     assert len(deltas) == expected
     assert deltas[0] == lo and deltas[-1] == hi
     assert all(b > a for a, b in itertools.pairwise(deltas))
-    assert OptimisationSpec.model_validate(
-        {"inverse_condition_limit": 0.5, "delta_range": [lo, hi], "delta_step": step}
-    ).sweep_size == expected
+    assert (
+        OptimisationSpec.model_validate(
+            {"inverse_condition_limit": 0.5, "delta_range": [lo, hi], "delta_step": step}
+        ).sweep_size
+        == expected
+    )
 
 
 def test_sweep_deltas_are_the_papers_grid() -> None:
@@ -123,8 +126,15 @@ MAP_ERRORS = [
     ({"architecture": "optimal"}, "Input should be 'isotropic'"),
     ({"l2": 0.5}, r"isotropic' needs l2 >= l1"),
     ({"l2": None}, "l2 is required for the proximal-arm type"),
-    ({"l2": -1}, "greater than 0"),
-    ({"l1": 0}, "greater than 0"),
+    ({"l2": -1}, "greater than or equal to 0.000001"),
+    ({"l1": 0}, "greater than or equal to 0.000001"),
+    ({"l1": 5e-324}, r"l1\n  Input should be greater than or equal to 0.000001"),
+    ({"l2": 1e6 + 1}, r"l2\n  Input should be less than or equal to 1000000"),
+    ({"l1": 1e-6, "l2": 1.01}, r"l2\n.*the longest \(1.01\) is 1.01e\+06 times the shortest"),
+    ({"architecture": None, "e": 1e-7}, r"e\n.*e is 0 \(coincident actuated joints\) or a "),
+    ({"architecture": None, "e": 2e6}, r"e\n  Input should be less than or equal to 1000000"),
+    ({"architecture": None, "l2": 2, "e": 2.1e6}, r"e\n  Input should be less than or equal"),
+    ({"architecture": None, "l2": 2, "e": 1.5e-6}, r"e\n.*1.33e\+06 times the shortest"),
     ({"l2": float("nan")}, "finite number"),
     ({"architecture": None, "e": -0.1}, "greater than or equal to 0"),
     ({"actuation": "cable"}, "'proximal-arm', 'telescopic-leg' or 'linear-drive'"),
@@ -139,12 +149,25 @@ MAP_ERRORS = [
     ({"grid": {"points_per_axis": 1}}, "greater than or equal to 2"),
     ({"grid": {"bounds": [1, -1, -2, 0]}}, "x_min 1 must be less than x_max -1"),
     ({"grid": {"bounds": [-1, 1, 0, 0]}}, "y_min 0 must be less than y_max 0"),
+    ({"grid": {"bounds": [-2e6, 1, 0, 1]}}, r"grid\.bounds\.0\n.*than or equal to -1000000"),
+    (
+        {"grid": {"bounds": [0, 1e-4, 0, 1]}},
+        r"grid\.bounds\n.*the grid's x step 5e-07 is below 1e-06: widen the bounds",
+    ),
+    ({"grid": {"bounds": [0, 1, 0, 2e-4], "points_per_axis": 2001}}, "y step 1e-07 is below"),
+    (
+        {"grid": {"bounds": [0, 1e-6, 0, 1], "points_per_axis": 2}},
+        r"grid\.bounds\n.*x side 1e-06 and the robot's longest length 1.7 differ by more than",
+    ),
+    ({"l1": 1e-6, "l2": 1e-6, "grid": {"bounds": [-1e6, 1e6, -1, 1]}}, r"x side 2e\+06 and"),
     ({"grid": {"step": 0.1}}, "Extra inputs are not permitted"),
-    ({"inverse_condition_limit": 0}, "greater than 0"),
+    ({"inverse_condition_limit": 0}, "greater than or equal to 0.000001"),
+    ({"inverse_condition_limit": 5e-324}, "greater than or equal to 0.000001"),
     ({"inverse_condition_limit": 1}, "less than 1"),
     ({"points": []}, "at least 1 item"),
     ({"points": [[0, 0, 0]]}, "at most 2 items"),
     ({"points": [[0, float("inf")]]}, "finite number"),
+    ({"points": [[0, 1e300]]}, r"points\.0\.1\n  Input should be less than or equal to 1000000"),
     ({"points": [[0, 0]] * 1001}, "at most 1000 items"),
     ({"length_unit": "$x$"}, "should match pattern"),
     ({"delta": 1.7}, "Extra inputs are not permitted"),
@@ -160,7 +183,8 @@ def test_map_rejects(inputs: dict[str, Any], message: str) -> None:
 OPT_ERRORS = [
     ({"inverse_condition_limit": 0.5}, "exactly one of 'allowable_pressure_angle_deg'"),
     ({"allowable_pressure_angle_deg": None}, "exactly one of 'allowable_pressure_angle_deg'"),
-    ({"allowable_pressure_angle_deg": 0}, "greater than 0"),
+    ({"allowable_pressure_angle_deg": 0}, "greater than or equal to 1"),
+    ({"allowable_pressure_angle_deg": 0.5}, "greater than or equal to 1"),
     ({"allowable_pressure_angle_deg": 90}, "less than 90"),
     ({"allowable_pressure_angle_deg": float("nan")}, "finite number"),
     ({"delta": 1.7, "delta_range": [1, 2]}, "give either 'delta' or a sweep"),
@@ -172,9 +196,19 @@ OPT_ERRORS = [
     ({"delta_range": [0.5, 2]}, r"must lie within \[1, 10\]: the isotropic architecture"),
     ({"delta_range": [1, 12]}, r"delta_range \[1, 12\] must lie within \[1, 10\]"),
     ({"delta_range": [1, 2, 3]}, r"delta_range needs two values \[lo, hi\], not 3"),
-    ({"delta_step": 0}, "greater than 0"),
-    ({"delta_range": [1, 10], "delta_step": 0.0005}, "the sweep holds 18001 deltas, more than"),
-    ({"aspect_ratio": 0}, "greater than 0"),
+    ({"delta_step": 0}, "greater than or equal to 0.000001"),
+    ({"delta_step": 5e-324}, r"delta_step\n  Input should be greater than or equal to 0.000001"),
+    (
+        {"delta_range": [1, 10], "delta_step": 0.0005},
+        r"delta_step\n.*\[1, 10\] at step 0.0005 holds more than 10001 deltas",
+    ),
+    (
+        {"delta_range": [3.6, 4]},
+        r"delta_range\n.*\[beta\] = 30°, eq \(17\)'s point is out of "
+        r"reach for delta >= 3.58726",
+    ),
+    ({"aspect_ratio": 0}, "greater than or equal to 0.01"),
+    ({"aspect_ratio": 0.009}, "greater than or equal to 0.01"),
     ({"aspect_ratio": 101}, "less than or equal to 100"),
     ({"mean_mesh": 1}, "greater than or equal to 2"),
     ({"mean_mesh": 1002}, "less than or equal to 1001"),

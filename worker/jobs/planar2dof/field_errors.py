@@ -1,0 +1,30 @@
+"""A validation error located at one field, raised by a model's cross-field check.
+
+A ``model_validator`` raising ``ValueError`` is reported at the model itself
+(``inputs`` or ``inputs.grid``); raising :func:`field_error` instead names the field
+whose value is out of range (``inputs.grid.bounds``, ``inputs.delta_step``), which is
+what the service's 422 shows the client.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+from pydantic import BaseModel, ValidationError
+from pydantic_core import InitErrorDetails, PydanticCustomError
+
+__all__ = ["field_error"]
+
+
+def field_error(
+    model: BaseModel, field: str | tuple[str | int, ...], message: str, value: Any
+) -> ValidationError:
+    """A ValidationError at ``field`` (a name or a path inside ``model``) saying
+    ``message`` about ``value``; raise it from a validator of ``model``."""
+    loc = (field,) if isinstance(field, str) else field
+    detail = InitErrorDetails(
+        type=PydanticCustomError("value_error", "Value error, {reason}", {"reason": message}),
+        loc=loc,
+        input=value,
+    )
+    return ValidationError.from_exception_data(type(model).__name__, [detail])
