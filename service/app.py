@@ -13,8 +13,11 @@ from fastapi.responses import JSONResponse
 from service.config import ServiceSettings
 from service.errors import install_error_handlers, problem_response
 from service.job_watcher import JobWatcher
+from service.openapi import install_openapi
 from service.problems import PROBLEM_TYPES
+from service.request_guard import RequestGuard
 from service.routes import health, jobs, processes
+from service.routes.process_operations import FAMILY_TAGS, execution_router
 from worker.dispatch import Dispatcher, make_dispatcher
 from worker.pool import WorkerPool
 from worker.processes import default_registry
@@ -58,6 +61,7 @@ def _start_sweeper(
 def create_app(settings: ServiceSettings | None = None) -> FastAPI:
     """Build the app.  The store opens and the pool starts when the app starts."""
     settings = settings or ServiceSettings()
+    registry = default_registry()
 
     @asynccontextmanager
     async def lifespan(app: FastAPI) -> AsyncIterator[None]:
@@ -70,7 +74,7 @@ def create_app(settings: ServiceSettings | None = None) -> FastAPI:
         sweeper = _start_sweeper(settings, store, dispatcher)
         app.state.settings = settings
         app.state.store = store
-        app.state.registry = default_registry()
+        app.state.registry = registry
         app.state.pool = pool
         app.state.dispatcher = dispatcher
         app.state.watcher = JobWatcher(store)
@@ -93,8 +97,23 @@ def create_app(settings: ServiceSettings | None = None) -> FastAPI:
         version="0.1.0",
         description=DESCRIPTION,
         lifespan=lifespan,
+        openapi_tags=[
+            {"name": "processes", "description": "What dexlab runs; the generic execute."},
+            *({"name": tag, "description": text} for tag, text in FAMILY_TAGS.values()),
+            {"name": "jobs", "description": "Status, results, artifacts, dismissal."},
+            {"name": "health", "description": "Liveness and readiness probes."},
+            {"name": "meta", "description": "The landing page and problem types."},
+        ],
     )
     install_error_handlers(app)
+    install_openapi(app, registry)
+    app.add_middleware(
+        RequestGuard,
+        routes=lambda: app.routes,
+        max_body_bytes=settings.max_body_bytes,
+        max_json_depth=settings.max_json_depth,
+    )
+    app.include_router(execution_router(registry))
     app.include_router(processes.router)
     app.include_router(jobs.router)
     app.include_router(health.router)

@@ -58,8 +58,10 @@ def _serve(args: argparse.Namespace) -> None:
     )
     logging.basicConfig(level=settings.log_level.upper(),
                         format="%(asctime)s %(process)d %(name)s %(levelname)s %(message)s")
+    # A client still holding a ``Prefer: wait`` open when the server stops is cut off
+    # after this grace (its job is committed; it polls it later).
     uvicorn.run(create_app(settings), host=settings.host, port=settings.port,
-                log_level=settings.log_level.lower())
+                log_level=settings.log_level.lower(), timeout_graceful_shutdown=10)
 
 
 def _worker(args: argparse.Namespace) -> None:

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import logging
+import math
 from typing import Any
 
 from fastapi import FastAPI, Request
@@ -10,6 +11,7 @@ from fastapi.exceptions import RequestValidationError
 from fastapi.responses import JSONResponse
 from starlette.exceptions import HTTPException as StarletteHTTPException
 
+from service.allow import allow_header, allowed_methods
 from service.problems import PROBLEM_TYPES, problem_type_uri
 from worker.errors import (
     CostLimitExceeded,
@@ -22,6 +24,8 @@ from worker.errors import (
     NoSuchJob,
     NoSuchProcess,
     ResultNotReady,
+    StorageError,
+    StorageFull,
     StoreUnavailable,
 )
 
@@ -41,7 +45,34 @@ _SLUGS: dict[type[DexlabError], str] = {
     ResultNotReady: "result-not-ready",
     JobDismissed: "job-dismissed",
     JobFailed: "job-failed",
+    StorageFull: "storage-full",
+    StorageError: "storage-error",
     StoreUnavailable: "store-unavailable",
+}
+
+
+def _slug(exc: DexlabError) -> str:
+    """The problem type of an exception: its class's, or its nearest base class's."""
+    for cls in type(exc).__mro__:
+        if cls in _SLUGS:
+            return _SLUGS[cls]
+    return "internal-error"
+
+
+def _retry_headers(exc: DexlabError, extra: dict[str, Any]) -> dict[str, str] | None:
+    """``Retry-After`` (whole seconds) for a store that is down for now."""
+    hint = extra.pop("retry_after_s", None)
+    if not isinstance(exc, StoreUnavailable) or isinstance(exc, StorageFull):
+        return None
+    seconds = hint if isinstance(hint, int | float) and hint > 0 else 5
+    return {"Retry-After": str(max(1, math.ceil(seconds)))}
+
+
+_HTTP_SLUGS = {
+    400: "malformed-request",
+    404: "not-found",
+    405: "method-not-allowed",
+    413: "request-too-large",
 }
 
 
@@ -88,8 +119,9 @@ def install_error_handlers(app: FastAPI) -> None:
 
     @app.exception_handler(DexlabError)
     async def _dexlab(request: Request, exc: DexlabError) -> JSONResponse:
-        slug = _SLUGS.get(type(exc), "internal-error")
+        slug = _slug(exc)
         extra: dict[str, Any] = dict(exc.extra)
+        headers = _retry_headers(exc, extra)
         if isinstance(exc, InvalidInputs):
             extra["errors"] = exc.errors
         if isinstance(exc, JobFailed) and "error" in exc.extra:
@@ -103,11 +135,21 @@ def install_error_handlers(app: FastAPI) -> None:
                 instance=str(request.url.path),
                 **extra,
             )
-        return problem_response(slug, detail=exc.detail, instance=str(request.url.path), **extra)
+        if isinstance(exc, StoreUnavailable):
+            log.warning("store trouble on %s: %s", request.url.path, exc.detail)
+        return problem_response(
+            slug, detail=exc.detail, instance=str(request.url.path), headers=headers, **extra
+        )
 
     @app.exception_handler(RequestValidationError)
     async def _validation(request: Request, exc: RequestValidationError) -> JSONResponse:
         errors = _request_errors(exc)
+        if any(e.get("type") == "json_invalid" for e in errors):
+            return problem_response(
+                "malformed-request",
+                detail="The request body is not valid JSON.",
+                instance=str(request.url.path),
+            )
         first = errors[0] if errors else {"field": "body", "message": "invalid"}
         detail = f"Invalid value for '{first['field']}': {first['message']}"
         if len(errors) > 1:
@@ -118,13 +160,16 @@ def install_error_handlers(app: FastAPI) -> None:
 
     @app.exception_handler(StarletteHTTPException)
     async def _http(request: Request, exc: StarletteHTTPException) -> JSONResponse:
-        slug = {404: "not-found", 405: "method-not-allowed"}.get(exc.status_code, "internal-error")
+        slug = _HTTP_SLUGS.get(exc.status_code, "internal-error")
+        headers = dict(exc.headers) if exc.headers else {}
+        if exc.status_code == 405:
+            headers["Allow"] = allow_header(allowed_methods(request.app.routes, request.scope))
         return problem_response(
             slug,
             detail=str(exc.detail),
             status=exc.status_code,
             instance=str(request.url.path),
-            headers=dict(exc.headers) if exc.headers else None,
+            headers=headers or None,
         )
 
     @app.exception_handler(Exception)

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import math
+
 __all__ = ["MAX_WAIT_S", "requested_wait"]
 
 #: The longest a synchronous request is held open, whatever it asks for.
@@ -10,7 +12,8 @@ MAX_WAIT_S = 60.0
 
 def requested_wait(prefer: str | None) -> float | None:
     """Seconds of ``wait=N`` in a Prefer header (capped at MAX_WAIT_S), or None when the
-    client did not ask to wait or asked for ``respond-async``."""
+    client did not ask to wait, asked for ``respond-async``, or gave a non-finite or
+    non-positive N (then the preference is ignored: no ``Preference-Applied``)."""
     if not prefer:
         return None
     wait: float | None = None
@@ -24,6 +27,6 @@ def requested_wait(prefer: str | None) -> float | None:
                 wait = float(value.strip().strip('"'))
             except ValueError:
                 continue
-    if wait is None or wait <= 0:
+    if wait is None or not math.isfinite(wait) or wait <= 0:
         return None
     return min(wait, MAX_WAIT_S)

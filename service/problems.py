@@ -13,6 +13,14 @@ PROBLEM_TYPES: dict[str, tuple[int, str, str]] = {
         422, "Invalid request",
         "The request body, a query parameter or a header is malformed; `errors` names it.",
     ),
+    "malformed-request": (
+        400, "Malformed request",
+        "The request body is not valid UTF-8 JSON, or nests too deeply; `detail` says where.",
+    ),
+    "request-too-large": (
+        413, "Request too large",
+        "The request body is larger than the service accepts (`max_body_bytes`).",
+    ),
     "cost-limit-exceeded": (
         422, "Cost limit exceeded",
         "The requested work exceeds the process's documented cost limit "
@@ -37,7 +45,18 @@ PROBLEM_TYPES: dict[str, tuple[int, str, str]] = {
     "worker-lost": (
         500, "Worker lost", "The worker running the job died on every allowed attempt.",
     ),
-    "store-unavailable": (503, "Job store unavailable", "The job store does not answer."),
+    "store-unavailable": (
+        503, "Job store unavailable",
+        "The job store does not answer or stays locked; retry after `Retry-After` seconds.",
+    ),
+    "storage-full": (
+        507, "Storage full",
+        "The job store's disk is full: nothing more can be stored until space is freed.",
+    ),
+    "storage-error": (
+        503, "Storage error",
+        "The job store cannot read or write its files (corrupt, read-only or an I/O error).",
+    ),
     "not-ready": (503, "Not ready", "The store or the worker pool is not up."),
     "not-found": (404, "Not found", "No resource at this path."),
     "method-not-allowed": (405, "Method not allowed", "This path does not accept this method."),

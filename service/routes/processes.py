@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import asyncio
 from typing import Annotated, Any
 
 from fastapi import APIRouter, Header, Request, Response
@@ -110,7 +111,7 @@ async def execute(
         response.headers["Idempotent-Replayed"] = "true"
     if wait is not None and synchronous:
         watcher: JobWatcher = request.app.state.watcher
-        if await watcher.wait(job.job_id, wait):
+        if await _wait_while_connected(request, watcher, job.job_id, wait):
             document = await run_in_threadpool(_finished_document, store, job.job_id)
             headers = {
                 "Location": response.headers["Location"],
@@ -118,6 +119,28 @@ async def execute(
             }
             return JSONResponse(document, status_code=200, headers=headers)
     return status_document(job)
+
+
+async def _wait_while_connected(
+    request: Request, watcher: JobWatcher, job_id: str, wait_s: float
+) -> bool:
+    """Wait for the job as the watcher does, but stop as soon as the client goes away
+    (an abandoned wait must not keep the request, nor the server's shutdown, open)."""
+    finished = asyncio.ensure_future(watcher.wait(job_id, wait_s))
+    gone = asyncio.ensure_future(_disconnected(request))
+    try:
+        await asyncio.wait({finished, gone}, return_when=asyncio.FIRST_COMPLETED)
+    finally:
+        for task in (finished, gone):
+            task.cancel()
+        await asyncio.gather(finished, gone, return_exceptions=True)
+    return finished.done() and not finished.cancelled() and finished.result()
+
+
+async def _disconnected(request: Request) -> None:
+    """Return once the client has closed the connection (the body is already read)."""
+    while (await request.receive())["type"] != "http.disconnect":
+        pass
 
 
 def _submit(

@@ -112,7 +112,9 @@ async def test_malformed_body_is_a_problem(asgi_client: httpx.AsyncClient) -> No
         "/v1/processes/planar3r-dexterity-map/execution", content=b"{not json",
         headers={"content-type": "application/json"},
     )
-    assert r.status_code == 422 and r.headers["content-type"] == PROBLEM
+    assert r.status_code == 400 and r.headers["content-type"] == PROBLEM
+    assert r.json()["type"] == "/problems/malformed-request"
+    assert "line 1 column 2" in r.json()["detail"]
 
 
 async def test_cost_limit_refuses_before_queuing(asgi_client: httpx.AsyncClient) -> None:

@@ -51,10 +51,18 @@ class ArtifactIndex:
 
     # -- where the bytes live (dialect hooks) -------------------------------------------
     def _put_artifact_data(
-        self, job_id: str, attempt: int, name: str, data: bytes, conn: Conn | None = None
-    ) -> None:
+        self,
+        job_id: str,
+        attempt: int,
+        name: str,
+        data: bytes,
+        conn: Conn | None = None,
+        lease_token: str | None = None,
+    ) -> bool:
         """Store one attempt's artifact bytes durably (in ``conn``'s transaction when
-        given, during a migration)."""
+        given, during a migration).  With ``lease_token``, a store whose writers may
+        resume after a pause (another machine) fences every write on the lease: False
+        once the attempt no longer owns the job, and nothing more is written."""
         raise NotImplementedError  # pragma: no cover - abstract
 
     def _artifact_data(self, job_id: str, attempt: int, name: str) -> Iterator[bytes]:
@@ -101,7 +109,13 @@ class ArtifactIndex:
             return True
         attempt = int(row["attempts"])
         for artifact in artifacts:
-            self._put_artifact_data(job_id, attempt, artifact.name, artifact.data)
+            if not self._put_artifact_data(
+                job_id, attempt, artifact.name, artifact.data, lease_token=lease_token
+            ):
+                log.warning("job %s: attempt %d lost its lease while storing results",
+                            job_id, attempt)
+                self._discard_attempt(job_id, attempt)
+                return False
         now = time.time()
         with self._write() as conn:
             row = self._one(

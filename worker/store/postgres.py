@@ -18,10 +18,13 @@ from collections.abc import Iterator, Mapping
 from contextlib import contextmanager
 from typing import Any, ClassVar
 
+from worker.contract import JobStatus
 from worker.errors import StoreUnavailable
 from worker.store.artifact_files import CHUNK_BYTES
 from worker.store.retry import Fault, retrying
 from worker.store.sql import SqlJobStore
+
+_RUNNING = JobStatus.RUNNING.value
 
 __all__ = ["PostgresJobStore"]
 
@@ -140,18 +143,26 @@ class PostgresJobStore(SqlJobStore):
 
     # -- artifact bytes: chunk rows -------------------------------------------------------
     def _put_artifact_data(
-        self, job_id: str, attempt: int, name: str, data: bytes, conn: Any = None
-    ) -> None:
+        self,
+        job_id: str,
+        attempt: int,
+        name: str,
+        data: bytes,
+        conn: Any = None,
+        lease_token: str | None = None,
+    ) -> bool:
         view = memoryview(data)
         chunks = [view[i : i + CHUNK_BYTES] for i in range(0, len(data), CHUNK_BYTES)]
         if conn is not None:  # a migration's own transaction
             self._delete_chunks_in(conn, job_id, attempt, name)
             for index, chunk in enumerate(chunks):
                 self._insert_chunk(conn, job_id, attempt, name, index, chunk)
-            return
+            return True
         self._delete_chunks(job_id, attempt, name)
         for index, chunk in enumerate(chunks):
-            self._put_chunk(job_id, attempt, name, index, chunk)
+            if not self._put_chunk(job_id, attempt, name, index, chunk, lease_token):
+                return False
+        return True
 
     def _delete_chunks_in(self, conn: Any, job_id: str, attempt: int, name: str) -> None:
         self._exec(
@@ -177,9 +188,29 @@ class PostgresJobStore(SqlJobStore):
 
     @retrying
     def _put_chunk(
-        self, job_id: str, attempt: int, name: str, index: int, chunk: memoryview
-    ) -> None:
-        self._insert_chunk(self._conn(), job_id, attempt, name, index, chunk)
+        self,
+        job_id: str,
+        attempt: int,
+        name: str,
+        index: int,
+        chunk: memoryview,
+        lease_token: str | None,
+    ) -> bool:
+        """Write one chunk; with ``lease_token`` only while that lease still runs the
+        job (the job row is share-locked for the insert, so a reaper's takeover waits
+        for it and every later insert of this attempt finds the lease gone)."""
+        if lease_token is None:
+            self._insert_chunk(self._conn(), job_id, attempt, name, index, chunk)
+            return True
+        cur = self._exec(
+            self._conn(),
+            "INSERT INTO artifact_chunks (job_id, attempt, name, chunk, data) "
+            "SELECT ?, ?, ?, ?, ? WHERE EXISTS (SELECT 1 FROM jobs WHERE job_id = ? "
+            "AND lease_token = ? AND status = ? FOR SHARE) "
+            "ON CONFLICT (job_id, attempt, name, chunk) DO UPDATE SET data = excluded.data",
+            (job_id, attempt, name, index, bytes(chunk), job_id, lease_token, _RUNNING),
+        )
+        return bool(cur.rowcount)
 
     @retrying
     def _get_chunk(self, job_id: str, attempt: int, name: str, index: int) -> bytes | None:

@@ -14,6 +14,7 @@ from __future__ import annotations
 
 import base64
 import json
+import re
 import time
 import uuid
 from collections.abc import Mapping, Sequence
@@ -43,6 +44,10 @@ def _ts(value: float | None) -> datetime | None:
     return None if value is None else datetime.fromtimestamp(value, tz=UTC)
 
 
+_CURSOR_NUMBER = re.compile(r"[0-9]{1,19}")
+_MAX_SEQ = 2**63 - 1
+
+
 def encode_cursor(seq: int) -> str:
     return base64.urlsafe_b64encode(f"seq:{seq}".encode()).decode().rstrip("=")
 
@@ -52,7 +57,8 @@ def decode_cursor(cursor: str) -> int:
         padded = cursor + "=" * (-len(cursor) % 4)
         text = base64.urlsafe_b64decode(padded.encode()).decode()
         prefix, _, number = text.partition(":")
-        if prefix != "seq":
+        # Digits only, and within a signed 64-bit integer: what the stores' seq holds.
+        if prefix != "seq" or not _CURSOR_NUMBER.fullmatch(number) or int(number) > _MAX_SEQ:
             raise ValueError(cursor)
         return int(number)
     except (ValueError, UnicodeDecodeError) as exc:

@@ -176,9 +176,19 @@ class SqliteJobStore(SqlJobStore):
 
     # -- artifact bytes: files ----------------------------------------------------------
     def _put_artifact_data(
-        self, job_id: str, attempt: int, name: str, data: bytes, conn: Any = None
-    ) -> None:
+        self,
+        job_id: str,
+        attempt: int,
+        name: str,
+        data: bytes,
+        conn: Any = None,
+        lease_token: str | None = None,
+    ) -> bool:
+        # One machine: the pool SIGKILLs a paused writer before its lease can pass on,
+        # and files of a superseded attempt are never pointed at (and are removed by
+        # the commit that supersedes it, or by this attempt's own refused commit).
         self.files.write(job_id, attempt, name, data)
+        return True
 
     def _artifact_data(self, job_id: str, attempt: int, name: str) -> Iterator[bytes]:
         return self.files.chunks(job_id, attempt, name)

@@ -1,0 +1,225 @@
+"""A truthful OpenAPI document: every status a route can answer, with its schema.
+
+FastAPI documents a route's success response and, for routes with parameters, a 422
+in its own validation-error shape.  dexlab answers every error as an RFC 9457 problem
+document, so this rewrites the generated document once (cached) after FastAPI builds
+it: each operation lists the problem statuses it can give (:data:`ROUTE_PROBLEMS` for
+the routes whose behaviour is known exactly; a conservative default for any other),
+every one with the ``ProblemDocument`` schema under ``application/problem+json``;
+the artifact download lists its media types and 304.
+"""
+
+from __future__ import annotations
+
+import re
+from typing import Any
+
+from fastapi import FastAPI
+from fastapi.openapi.utils import get_openapi
+from pydantic.json_schema import models_json_schema
+
+from service.problems import PROBLEM_TYPES
+from worker.processes import ProcessRegistry
+
+__all__ = ["PROBLEM_SCHEMA", "install_openapi"]
+
+PROBLEM_JSON = "application/problem+json"
+
+#: RFC 9457, with the members dexlab adds (``errors`` of a 422, ``jobID`` of a failed job).
+PROBLEM_SCHEMA: dict[str, Any] = {
+    "title": "ProblemDocument",
+    "type": "object",
+    "required": ["type", "title", "status", "detail"],
+    "properties": {
+        "type": {"type": "string", "description": "The problem type (dereferenceable)."},
+        "title": {"type": "string"},
+        "status": {"type": "integer", "minimum": 100, "maximum": 599},
+        "detail": {"type": "string", "description": "What went wrong, for a person."},
+        "instance": {"type": "string", "description": "The path the request went to."},
+        "errors": {
+            "type": "array",
+            "description": "Each invalid field: its dotted path, a message and a type.",
+            "items": {
+                "type": "object",
+                "required": ["field", "message"],
+                "properties": {
+                    "field": {"type": "string"},
+                    "message": {"type": "string"},
+                    "type": {"type": ["string", "null"]},
+                },
+            },
+        },
+        "jobID": {"type": ["string", "null"]},
+    },
+    "additionalProperties": True,
+}
+
+#: The problem statuses of the known routes: (method, path) -> statuses.  500 (an
+#: unexpected error, always a problem document) is added to every operation.
+ROUTE_PROBLEMS: dict[tuple[str, str], tuple[int, ...]] = {
+    ("get", "/"): (),
+    ("get", "/problems/{slug}"): (404,),
+    ("get", "/health/live"): (),
+    ("get", "/health/ready"): (503,),
+    ("get", "/v1/processes"): (),
+    ("get", "/v1/processes/{process_id}"): (404,),
+    ("post", "/v1/processes/{process_id}/execution"): (400, 404, 413, 422, 503, 507),
+    ("get", "/v1/jobs"): (422, 503),
+    ("get", "/v1/jobs/{job_id}"): (404, 503),
+    ("delete", "/v1/jobs/{job_id}"): (404, 503),
+    # A failed job's results answer its failure's problem (job-error, worker-lost,
+    # time-limit-exceeded: 500; storage-full: 507; storage-error: 503).
+    ("get", "/v1/jobs/{job_id}/results"): (404, 410, 503, 507),
+    ("get", "/v1/jobs/{job_id}/results/{name}"): (404, 410, 503, 507),
+}
+
+#: What an artifact download can be (the process description lists each job's).
+ARTIFACT_MEDIA_TYPES = ("image/png", "image/svg+xml", "text/csv", "application/x-npz")
+
+_DESCRIPTIONS = {
+    400: "Malformed request: the body is not UTF-8 JSON or nests too deeply.",
+    404: "No such process, job or artifact, or the result is not ready yet.",
+    410: "The job was dismissed; its results are gone.",
+    413: "The request body is larger than the service accepts.",
+    422: "Invalid inputs or parameters; `errors` names every bad field.",
+    500: "An unexpected error (logged), or the failure of the job whose results were asked.",
+    503: "The job store is unavailable (see `Retry-After`), or the service is not ready.",
+    507: "The job store's disk is full.",
+}
+
+
+def _default_statuses(method: str, operation: dict[str, Any]) -> tuple[int, ...]:
+    """Statuses of a route not in the table, from what it takes."""
+    statuses = {503}
+    parameters = operation.get("parameters", [])
+    if any(p.get("in") == "path" for p in parameters):
+        statuses.add(404)
+    if parameters or "requestBody" in operation:
+        statuses.add(422)
+    if method in ("post", "put", "patch"):
+        statuses.update({400, 413})
+    return tuple(sorted(statuses))
+
+
+def _problem_response(status: int) -> dict[str, Any]:
+    titles = sorted({t for s, t, _ in PROBLEM_TYPES.values() if s == status})
+    description = _DESCRIPTIONS.get(status, ", ".join(titles) or "A problem.")
+    return {
+        "description": description,
+        "content": {PROBLEM_JSON: {"schema": {"$ref": "#/components/schemas/ProblemDocument"}}},
+    }
+
+
+def _artifact_responses(responses: dict[str, Any]) -> None:
+    binary = {"schema": {"type": "string", "format": "binary"}}
+    responses["200"] = {
+        "description": "The artifact's bytes (strong ETag; CSV and NPZ as attachments).",
+        "content": {media: binary for media in ARTIFACT_MEDIA_TYPES},
+        "headers": {"ETag": {"schema": {"type": "string"}, "description": "SHA-256 of the bytes."}},
+    }
+    responses["304"] = {"description": "Not modified (If-None-Match matched the ETag)."}
+
+
+def _example_key(title: str, taken: set[str]) -> str:
+    key = re.sub(r"[^A-Za-z0-9]+", "-", title).strip("-").lower()[:60] or "example"
+    unique, n = key, 2
+    while unique in taken:
+        unique, n = f"{key}-{n}", n + 1
+    taken.add(unique)
+    return unique
+
+
+def _process_bodies(
+    document: dict[str, Any], registry: ProcessRegistry
+) -> dict[tuple[str, str], tuple[int, ...]]:
+    """Give each per-process execute operation its input model and worked examples;
+    the problem statuses of those operations."""
+    statuses: dict[tuple[str, str], tuple[int, ...]] = {}
+    definitions = list(registry)
+    refs, top = models_json_schema(
+        [(d.inputs_model, "validation") for d in definitions],
+        ref_template="#/components/schemas/{model}",
+    )
+    document["components"]["schemas"].update(top.get("$defs", {}))
+    for definition in definitions:
+        path = document["paths"].get(f"/v1/processes/{definition.id}/execution")
+        if path is None or "post" not in path:
+            continue
+        taken: set[str] = set()
+        examples = {
+            _example_key(ex.title, taken): {
+                "summary": ex.title,
+                "description": ex.description,
+                "value": {"inputs": dict(ex.inputs)},
+            }
+            for ex in definition.examples
+        }
+        schema = {
+            "type": "object",
+            "required": ["inputs"],
+            "additionalProperties": False,
+            "properties": {"inputs": refs[(definition.inputs_model, "validation")]},
+        }
+        content: dict[str, Any] = {"schema": schema}
+        if examples:
+            content["examples"] = examples
+        path["post"]["requestBody"] = {
+            "required": True,
+            "content": {"application/json": content},
+        }
+        statuses[("post", f"/v1/processes/{definition.id}/execution")] = (
+            400, 413, 422, 503, 507,
+        )  # fmt: skip
+    return statuses
+
+
+def _rewrite(
+    document: dict[str, Any], known: dict[tuple[str, str], tuple[int, ...]]
+) -> dict[str, Any]:
+    schemas = document.setdefault("components", {}).setdefault("schemas", {})
+    schemas["ProblemDocument"] = PROBLEM_SCHEMA
+    schemas.pop("HTTPValidationError", None)
+    schemas.pop("ValidationError", None)
+    for path, item in document.get("paths", {}).items():
+        for method, operation in item.items():
+            if not isinstance(operation, dict) or "responses" not in operation:
+                continue
+            responses: dict[str, Any] = operation["responses"]
+            statuses = known.get((method, path))
+            if statuses is None:
+                statuses = _default_statuses(method, operation)
+            responses.pop("422", None)  # FastAPI's validation shape: replaced below
+            for status in (*statuses, 500):
+                responses[str(status)] = _problem_response(status)
+            if method == "post" and path.endswith("/execution"):
+                responses["200"] = {
+                    "description": "The result document: the job finished within the "
+                    "`Prefer: wait=N` the request asked for (`Preference-Applied`).",
+                    "content": {"application/json": {"schema": {"type": "object"}}},
+                }
+            if (method, path) == ("get", "/v1/jobs/{job_id}/results/{name}"):
+                _artifact_responses(responses)
+    return document
+
+
+def install_openapi(app: FastAPI, registry: ProcessRegistry) -> None:
+    """Make ``app.openapi()`` (and ``/openapi.json``) return the rewritten document,
+    with ``registry``'s processes' input schemas and worked examples."""
+
+    def build() -> dict[str, Any]:
+        if app.openapi_schema is None:
+            document = get_openapi(
+                title=app.title,
+                version=app.version,
+                openapi_version=app.openapi_version,
+                description=app.description,
+                routes=app.routes,
+                tags=app.openapi_tags,
+                servers=app.servers,
+            )
+            document.setdefault("components", {}).setdefault("schemas", {})
+            known = {**ROUTE_PROBLEMS, **_process_bodies(document, registry)}
+            app.openapi_schema = _rewrite(document, known)
+        return app.openapi_schema
+
+    app.openapi = build  # type: ignore[method-assign]
