@@ -7,8 +7,10 @@ description of its outputs, and its cost limit (checked before anything is queue
 
 from __future__ import annotations
 
+import copy
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass
+from functools import cached_property
 from typing import Any
 
 from pydantic import BaseModel
@@ -51,6 +53,11 @@ class ProcessDefinition:
     #: 0: never.
     sync_cost_limit: int = 0
 
+    @cached_property
+    def inputs_schema(self) -> dict[str, Any]:
+        """The inputs' JSON Schema (published, and checked at submission)."""
+        return self.inputs_model.model_json_schema()
+
     def describe(self) -> dict[str, Any]:
         """The process description served at ``GET /v1/processes/{id}``."""
         return {
@@ -63,7 +70,7 @@ class ProcessDefinition:
                 if self.sync_cost_limit
                 else ["async-execute", "dismiss"]
             ),
-            "inputs": self.inputs_model.model_json_schema(),
+            "inputs": copy.deepcopy(self.inputs_schema),
             "outputs": dict(self.outputs),
             "examples": [
                 {"title": ex.title, "description": ex.description, "inputs": dict(ex.inputs)}

@@ -14,6 +14,7 @@ from pydantic import BaseModel, ValidationError
 from worker.contract import JobRecord
 from worker.dispatch import Dispatcher
 from worker.errors import CostLimitExceeded, InvalidInputs, NoSuchProcess
+from worker.input_schema import schema_errors
 from worker.processes import ProcessDefinition, ProcessRegistry
 from worker.request_hash import request_hash
 from worker.settings import WorkerSettings
@@ -44,9 +45,15 @@ def field_errors(exc: ValidationError, prefix: tuple[str | int, ...] = ()) -> li
 def validate_inputs(definition: ProcessDefinition, raw: Mapping[str, Any]) -> BaseModel:
     """The validated inputs model, or :class:`InvalidInputs` naming every bad field."""
     try:
-        return definition.inputs_model.model_validate(raw)
+        inputs = definition.inputs_model.model_validate(raw)
     except ValidationError as exc:
         raise InvalidInputs(field_errors(exc, ("inputs",))) from exc
+    # The model's lax coercions (true -> 1.0, "2" -> 2.0) are not what the schema
+    # publishes; the schema wins.
+    mismatches = schema_errors(definition.inputs_schema, raw)
+    if mismatches:
+        raise InvalidInputs(mismatches)
+    return inputs
 
 
 def submit(

@@ -3,16 +3,17 @@
 from __future__ import annotations
 
 from pathlib import Path
+from typing import Any
 
 import pytest
 from pydantic import BaseModel, ConfigDict, Field
 
 from worker.contract import JobContext, JobOutcome
 from worker.errors import CostLimitExceeded, InvalidInputs, NoSuchProcess
-from worker.processes import ProcessDefinition, ProcessRegistry
+from worker.processes import ProcessDefinition, ProcessRegistry, default_registry
 from worker.settings import WorkerSettings
 from worker.store import open_store
-from worker.submission import request_hash, submit
+from worker.submission import request_hash, submit, validate_inputs
 
 
 class Inner(BaseModel):
@@ -76,3 +77,36 @@ def test_request_hash_ignores_key_order_but_not_values() -> None:
     assert request_hash("p", {"a": 1, "b": 2}) == request_hash("p", {"b": 2, "a": 1})
     assert request_hash("p", {"a": 1}) != request_hash("p", {"a": 2})
     assert request_hash("p", {"a": 1}) != request_hash("q", {"a": 1})
+
+
+# -- the published schema is the contract ---------------------------------------------
+
+
+@pytest.mark.parametrize(
+    ("process_id", "raw", "field"),
+    [
+        ("fourbar-grashof", {"lengths": ["30", 17, 18, 25], "ground": 0}, "inputs.lengths[0]"),
+        (
+            "planar3r-dexterity-map",
+            {"links": [15, 14, 8], "trajectory": {"x_start": 14.0, "x_end": False,
+                                                  "polynomial": [1, 2], "samples": 10}},
+            "inputs.trajectory.x_end",
+        ),
+    ],
+)
+def test_lax_coercions_the_schema_does_not_publish_are_refused(
+    process_id: str, raw: dict[str, Any], field: str
+) -> None:
+    """Pydantic would read ``"30"`` as 30 and ``true`` as 1; the schema says number."""
+    definition = default_registry().get(process_id)
+    assert definition is not None
+    with pytest.raises(InvalidInputs) as caught:
+        validate_inputs(definition, raw)
+    assert [e["field"] for e in caught.value.errors] == [field], caught.value.errors
+    assert "input schema" in caught.value.errors[0]["message"]
+
+
+def test_every_worked_example_matches_its_published_schema() -> None:
+    for definition in default_registry():
+        for example in definition.examples:
+            validate_inputs(definition, example.inputs)
