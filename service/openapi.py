@@ -19,6 +19,8 @@ from fastapi.openapi.utils import get_openapi
 from pydantic.json_schema import models_json_schema
 
 from service.problems import PROBLEM_TYPES
+from service.routes.process_operations import FAMILY_PAPERS, family_of
+from service.schemas import ROUTE_DOCUMENTS, document_schemas
 from worker.processes import ProcessRegistry
 
 __all__ = ["PROBLEM_SCHEMA", "install_openapi"]
@@ -146,9 +148,10 @@ def _process_bodies(
         if path is None or "post" not in path:
             continue
         taken: set[str] = set()
+        paper = FAMILY_PAPERS.get(family_of(definition))
         examples = {
             _example_key(ex.title, taken): {
-                "summary": ex.title,
+                "summary": f"{paper}: {ex.title}" if paper else ex.title,
                 "description": ex.description,
                 "value": {"inputs": dict(ex.inputs)},
             }
@@ -173,11 +176,18 @@ def _process_bodies(
     return statuses
 
 
+def _json_response(responses: dict[str, Any], status: str, ref: dict[str, Any]) -> None:
+    entry = responses.setdefault(status, {"description": "OK"})
+    entry["content"] = {"application/json": {"schema": ref}}
+
+
 def _rewrite(
     document: dict[str, Any], known: dict[tuple[str, str], tuple[int, ...]]
 ) -> dict[str, Any]:
     schemas = document.setdefault("components", {}).setdefault("schemas", {})
     schemas["ProblemDocument"] = PROBLEM_SCHEMA
+    refs, components = document_schemas()
+    schemas.update(components)
     schemas.pop("HTTPValidationError", None)
     schemas.pop("ValidationError", None)
     for path, item in document.get("paths", {}).items():
@@ -195,8 +205,13 @@ def _rewrite(
                 responses["200"] = {
                     "description": "The result document: the job finished within the "
                     "`Prefer: wait=N` the request asked for (`Preference-Applied`).",
-                    "content": {"application/json": {"schema": {"type": "object"}}},
                 }
+                _json_response(responses, "200", refs["ResultsDocument"])
+                _json_response(responses, "201", refs["StatusDocument"])
+            document_route = ROUTE_DOCUMENTS.get((method, path))
+            if document_route is not None:
+                success, model = document_route
+                _json_response(responses, success, refs[model.__name__])
             if (method, path) == ("get", "/v1/jobs/{job_id}/results/{name}"):
                 _artifact_responses(responses)
     return document

@@ -18,7 +18,15 @@ from service.deps import DispatcherDep, RegistryDep, SettingsDep, StoreDep
 from service.routes.processes import ExecuteRequest, execute
 from worker.processes import ProcessDefinition, ProcessRegistry
 
-__all__ = ["FAMILY_TAGS", "execution_router", "family_of", "family_tag"]
+__all__ = ["FAMILY_PAPERS", "FAMILY_TAGS", "execution_router", "family_of", "family_tag"]
+
+#: The paper each family reproduces, as example summaries name it.
+FAMILY_PAPERS: dict[str, str] = {
+    "planar3r": "Patel & Sobh 2012",
+    "planar2dof": "Huang et al. 2004",
+    "spm": "Bai 2010",
+    "chains": "the parallelism paper",
+}
 
 #: The job families, by their package under ``worker/jobs``: (tag, description).
 FAMILY_TAGS: dict[str, tuple[str, str]] = {

@@ -52,7 +52,7 @@ def serve(app: FastAPI) -> Iterator[httpx.Client]:
 
 
 def settings_for(tmp_path: Path, **overrides: Any) -> ServiceSettings:
-    return ServiceSettings(data_dir=tmp_path, workers=0, **overrides)
+    return ServiceSettings(**{"data_dir": tmp_path, "workers": 0, **overrides})
 
 
 @pytest.fixture
@@ -237,3 +237,35 @@ def test_openapi_documents_every_problem_status_and_artifact_types(client: httpx
         "image/png", "image/svg+xml", "text/csv", "application/x-npz",
     }  # fmt: skip
     assert "304" in artifact and "410" in artifact
+
+
+def test_documents_match_their_published_schemas(tmp_path: Path) -> None:
+    """Every JSON document of a real job's life validates against the schema the
+    OpenAPI document gives its route (a field added but not described fails here)."""
+    from jsonschema import Draft202012Validator
+
+    with serve(create_app(settings_for(tmp_path, workers=1))) as c:
+        doc = c.get("/openapi.json").json()
+
+        def check(path: str, method: str, status: str, body: Any) -> None:
+            ref = doc["paths"][path][method]["responses"][status]["content"]
+            schema = {**ref["application/json"]["schema"], "components": doc["components"]}
+            errors = [e.message for e in Draft202012Validator(schema).iter_errors(body)]
+            assert not errors, (path, status, errors)
+
+        r = c.post(FOURBAR, json=FOURBAR_BODY)
+        check(FOURBAR, "post", "201", r.json())
+        job = r.json()["jobID"]
+        deadline = time.monotonic() + 60
+        while (status := c.get(f"/v1/jobs/{job}").json())["status"] != "successful":
+            assert time.monotonic() < deadline and status["status"] != "failed", status
+            time.sleep(0.2)
+        check("/v1/jobs/{job_id}", "get", "200", status)
+        check("/v1/jobs/{job_id}/results", "get", "200", c.get(f"/v1/jobs/{job}/results").json())
+        check("/v1/jobs", "get", "200", c.get("/v1/jobs").json())
+        check("/v1/processes", "get", "200", c.get("/v1/processes").json())
+        for process in c.get("/v1/processes").json()["processes"]:
+            described = c.get(f"/v1/processes/{process['id']}").json()
+            check("/v1/processes/{process_id}", "get", "200", described)
+        check("/", "get", "200", c.get("/").json())
+        check("/v1/jobs/{job_id}", "delete", "200", c.delete(f"/v1/jobs/{job}").json())

@@ -1,0 +1,164 @@
+"""The shapes of the JSON documents the API answers, for the OpenAPI document.
+
+The handlers build these documents as plain dicts (:mod:`service.documents`); these
+models describe them so that ``/openapi.json`` tells a client what it will get, and
+schemathesis checks every answer against them.  They are descriptions, not
+serializers: a field added to a document must be added here (the API tests fail
+otherwise).
+"""
+
+from __future__ import annotations
+
+from typing import Any, Literal
+
+from pydantic import BaseModel, ConfigDict, Field
+from pydantic.json_schema import models_json_schema
+
+__all__ = ["DOCUMENT_SCHEMAS", "ROUTE_DOCUMENTS", "document_schemas"]
+
+
+class _Document(BaseModel):
+    model_config = ConfigDict(extra="forbid")
+
+
+class Link(_Document):
+    href: str
+    rel: str
+    type: str | None = None
+    title: str | None = None
+
+
+class JobError(_Document):
+    type: str
+    title: str | None = None
+    detail: str | None = None
+
+
+class StatusDocument(_Document):
+    """``GET /v1/jobs/{jobID}``: where a job is."""
+
+    jobID: str
+    processID: str
+    type: Literal["process"]
+    status: Literal["accepted", "running", "successful", "failed", "dismissed"]
+    progress: int = Field(ge=0, le=100)
+    message: str | None
+    created: str | None
+    started: str | None
+    finished: str | None
+    updated: str | None
+    attempts: int
+    max_attempts: int
+    time_limit_s: float
+    worker_id: str | None
+    links: list[Link]
+    error: JobError | None = None
+
+
+class JobList(_Document):
+    """``GET /v1/jobs``: a page of jobs, newest first."""
+
+    jobs: list[StatusDocument]
+    next_cursor: str | None
+    links: list[Link]
+
+
+class ArtifactLink(_Document):
+    name: str
+    media_type: str
+    title: str
+    size: int
+    href: str
+
+
+class ResultsDocument(_Document):
+    """``GET /v1/jobs/{jobID}/results``: the result and a link to every artifact."""
+
+    jobID: str
+    processID: str
+    result: dict[str, Any]
+    artifacts: list[ArtifactLink]
+    links: list[Link]
+
+
+class ProcessSummary(_Document):
+    id: str
+    title: str
+    description: str
+    version: str
+    links: list[Link]
+
+
+class ProcessList(_Document):
+    """``GET /v1/processes``."""
+
+    processes: list[ProcessSummary]
+    links: list[Link]
+
+
+class ProcessExampleDocument(_Document):
+    title: str
+    description: str
+    inputs: dict[str, Any]
+
+
+class ProcessLimits(_Document):
+    cost_limit: int
+    cost_unit: str
+    time_limit_s: float
+    sync_cost_limit: int
+
+
+class ProcessDescription(_Document):
+    """``GET /v1/processes/{processID}``: its input schema, worked examples, limits."""
+
+    id: str
+    title: str
+    description: str
+    version: str
+    jobControlOptions: list[str]
+    inputs: dict[str, Any] = Field(description="The inputs' JSON Schema.")
+    outputs: dict[str, str]
+    examples: list[ProcessExampleDocument]
+    limits: ProcessLimits
+    links: list[Link]
+
+
+class Landing(_Document):
+    """``GET /``: where to go from here."""
+
+    title: str
+    description: str
+    links: list[Link]
+
+
+DOCUMENT_SCHEMAS: tuple[type[BaseModel], ...] = (
+    StatusDocument,
+    JobList,
+    ResultsDocument,
+    ProcessList,
+    ProcessDescription,
+    Landing,
+)
+
+#: The 200 (or 201) document of each route: (method, path) -> (status, model).
+ROUTE_DOCUMENTS: dict[tuple[str, str], tuple[str, type[BaseModel]]] = {
+    ("get", "/"): ("200", Landing),
+    ("get", "/v1/processes"): ("200", ProcessList),
+    ("get", "/v1/processes/{process_id}"): ("200", ProcessDescription),
+    ("post", "/v1/processes/{process_id}/execution"): ("201", StatusDocument),
+    ("get", "/v1/jobs"): ("200", JobList),
+    ("get", "/v1/jobs/{job_id}"): ("200", StatusDocument),
+    ("delete", "/v1/jobs/{job_id}"): ("200", StatusDocument),
+    ("get", "/v1/jobs/{job_id}/results"): ("200", ResultsDocument),
+}
+
+
+def document_schemas() -> tuple[dict[str, dict[str, Any]], dict[str, Any]]:
+    """``(refs by model name, component schemas)`` of the documents."""
+    refs, top = models_json_schema(
+        [(m, "serialization") for m in DOCUMENT_SCHEMAS],
+        ref_template="#/components/schemas/{model}",
+    )
+    by_name = {model.__name__: ref for (model, _), ref in refs.items()}
+    return by_name, top.get("$defs", {})
