@@ -16,7 +16,7 @@ from typing import Any
 
 import pytest
 import schemathesis
-from hypothesis import HealthCheck, given, settings
+from hypothesis import HealthCheck, Phase, given, settings
 from schemathesis.checks import not_a_server_error
 from schemathesis.generation import GenerationMode
 from schemathesis.specs.openapi.checks import positive_data_acceptance
@@ -88,6 +88,8 @@ def test_every_answer_is_documented_and_none_is_a_server_error(
         deadline=None,
         database=None,
         suppress_health_check=list(HealthCheck),
+        # No shrinking: each step is a request; a failure is reported as found.
+        phases=[Phase.explicit, Phase.reuse, Phase.generate],
     )
     def check(case: Any) -> None:
         # A wait would only hold the connection open: no worker runs here.

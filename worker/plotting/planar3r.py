@@ -198,7 +198,8 @@ def radial_section_figure(
 
     fig = Figure(figsize=(9.0, 5.4), layout="constrained")
     ax = fig.add_subplot()
-    d_end = max(float(dist.max()), radii[2] * 1.08)
+    # Far task points (out of reach) widen the view rather than fall off it.
+    d_end = max(float(dist.max()), radii[2] * 1.08, max(marks, default=0.0) * 1.05)
     ax.set_xlim(0.0, d_end)
     ax.set_ylim(0.0, 1.05)
     shade_regions(ax, radii, d_end)

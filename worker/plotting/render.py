@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import io
 
+import numpy as np
 from matplotlib import rc_context
 from matplotlib.figure import Figure
 
@@ -37,10 +38,16 @@ def figure_artifacts(fig: Figure, stem: str, title: str) -> tuple[Artifact, Arti
             f"without path separators. Got {stem!r} instead."
         )
     png = io.BytesIO()
-    fig.savefig(png, format="png", dpi=RASTER_DPI, metadata={"Title": title})
     svg = io.BytesIO()
-    with rc_context({"svg.hashsalt": f"dexlab:{stem}"}):
-        fig.savefig(svg, format="svg", dpi=RASTER_DPI, metadata={"Date": None, "Title": title})
+    # Matplotlib's 3-D projection multiplies the unused padding of its face arrays
+    # (uninitialised memory) by the view matrix; at small length scales that overflows
+    # now and then, warning about values that are never drawn.
+    with np.errstate(over="ignore", under="ignore", invalid="ignore"):
+        fig.savefig(png, format="png", dpi=RASTER_DPI, metadata={"Title": title})
+        with rc_context({"svg.hashsalt": f"dexlab:{stem}"}):
+            fig.savefig(
+                svg, format="svg", dpi=RASTER_DPI, metadata={"Date": None, "Title": title}
+            )
     return (
         Artifact(name=f"{stem}.png", media_type="image/png", data=png.getvalue(), title=title),
         Artifact(name=f"{stem}.svg", media_type="image/svg+xml", data=svg.getvalue(), title=title),

@@ -22,11 +22,11 @@ from worker.jobs.chains.costs import (
     fourbar_grashof_cost,
 )
 from worker.jobs.chains.examples import CHAIN_PARALLELISM_EXAMPLES, FOURBAR_GRASHOF_EXAMPLES
+from worker.jobs.chains.fourbar_spec import FourBarGrashofSpec
 from worker.jobs.chains.specs import (
     MAX_CHAINS,
     MAX_SINGLE_LOOP_LINKS,
     ChainParallelismSpec,
-    FourBarGrashofSpec,
 )
 from worker.processes import ProcessDefinition
 

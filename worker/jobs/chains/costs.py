@@ -10,11 +10,11 @@ from __future__ import annotations
 
 import math
 
+from worker.jobs.chains.fourbar_spec import FourBarGrashofSpec
 from worker.jobs.chains.specs import (
     MAX_CHAINS,
     MAX_SINGLE_LOOP_LINKS,
     ChainParallelismSpec,
-    FourBarGrashofSpec,
     LoopChain,
     MultiLoopChain,
 )

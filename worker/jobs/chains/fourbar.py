@@ -13,7 +13,7 @@ from typing import Any
 import numpy as np
 
 from worker.contract import Artifact, JobContext, JobOutcome
-from worker.jobs.chains.specs import FourBarGrashofSpec
+from worker.jobs.chains.fourbar_spec import FourBarGrashofSpec
 from worker.kinematics.fourbar import FourBarClassification, classify_four_bar, four_bar_poses
 from worker.plotting import chains as plots
 from worker.plotting.render import figure_artifacts

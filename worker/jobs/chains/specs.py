@@ -11,7 +11,6 @@ path, e.g. ``chains[1].loops[2]: link '9' is not defined``.
 
 from __future__ import annotations
 
-import math
 from typing import Annotated, Any
 
 from pydantic import (
@@ -26,9 +25,9 @@ from pydantic import (
 )
 from pydantic_core import InitErrorDetails, PydanticCustomError
 
+from worker.jobs.numeric_ranges import PositiveLength, length_ratio_problem, ratio_schema
 from worker.jobs.spec_base import FrozenSpec
 from worker.kinematics import chains
-from worker.kinematics.fourbar import CHANGE_POINT_RTOL
 
 __all__ = [
     "MAX_CHAINS",
@@ -37,11 +36,13 @@ __all__ = [
     "MAX_POLYGON_SIDES",
     "MAX_SINGLE_LOOP_LINKS",
     "ChainParallelismSpec",
-    "FourBarGrashofSpec",
     "LoopChain",
     "MultiLoopChain",
     "PolygonalLink",
+    "chain_error",
+    "plots_field",
     "to_chain",
+    "unit_field",
 ]
 
 #: Longest single loop: its (n-1)!/2 cyclic arrangements are all listed (2520 for 8).
@@ -54,8 +55,9 @@ MAX_LOOP_SIDES = 16
 MAX_POLYGON_SIDES = 8
 MAX_CHAINS = 20
 
-#: A length: finite (the models reject NaN and infinity) and positive.
-Length = Annotated[float, Field(gt=0)]
+#: A length: in [MIN_LENGTH, MAX_LENGTH] (worker.jobs.numeric_ranges); the lengths of
+#: one chain span at most MAX_LENGTH_RATIO (checked with the chain).
+Length = PositiveLength
 _NAME_PATTERN = r"^[A-Za-z0-9_-]{1,16}$"
 LinkName = Annotated[str, StringConstraints(pattern=_NAME_PATTERN)]
 SideName = Annotated[str, StringConstraints(pattern=_NAME_PATTERN)]
@@ -90,9 +92,10 @@ class LoopChain(FrozenSpec):
     name: ChainName = Field(..., description="Name of the chain (unique among the chains).")
     lengths: Annotated[tuple[Length, ...], _counted("lengths", 3, MAX_SINGLE_LOOP_LINKS)] = Field(
         ...,
-        json_schema_extra=_bounds(3, MAX_SINGLE_LOOP_LINKS),
+        json_schema_extra={**_bounds(3, MAX_SINGLE_LOOP_LINKS), **ratio_schema()},
         description=f"Link lengths in order round the loop (3..{MAX_SINGLE_LOOP_LINKS}); the "
-        "links are named '1', '2', ... in this order.",
+        "links are named '1', '2', ... in this order. Each in [1e-6, 1e6], the longest at "
+        "most 1e6 times the shortest.",
     )
 
 
@@ -139,8 +142,10 @@ class MultiLoopChain(FrozenSpec):
         ...,
         min_length=3,
         max_length=MAX_LINKS,
+        json_schema_extra=ratio_schema(),
         description="Each link's length (a binary link) or {'sides': {...}} (a polygonal "
-        "link), by link name (letters, digits, '_' or '-').",
+        "link), by link name (letters, digits, '_' or '-'). Every length and side in "
+        "[1e-6, 1e6], the longest of the chain at most 1e6 times the shortest.",
     )
     loops: Annotated[
         tuple[
@@ -209,7 +214,7 @@ def _path(where: tuple[str | int, ...]) -> str:
     return text
 
 
-def _error(loc: tuple[str | int, ...], message: str, value: Any) -> InitErrorDetails:
+def chain_error(loc: tuple[str | int, ...], message: str, value: Any) -> InitErrorDetails:
     return {
         "type": PydanticCustomError("chain_description", "{message}", {"message": message}),
         "loc": loc,
@@ -217,7 +222,7 @@ def _error(loc: tuple[str | int, ...], message: str, value: Any) -> InitErrorDet
     }
 
 
-def _unit_field() -> Any:
+def unit_field() -> Any:
     return Field(
         "units",
         min_length=1,
@@ -227,7 +232,7 @@ def _unit_field() -> Any:
     )
 
 
-def _plots_field() -> Any:
+def plots_field() -> Any:
     return Field(True, description="Render the PNG/SVG plots. false: the result document only.")
 
 
@@ -241,8 +246,8 @@ class ChainParallelismSpec(FrozenSpec):
         "links and degrees of freedom: {'name', 'lengths': [...]} for a single loop, or "
         "{'name', 'links': {...}, 'loops': [[...], ...]} for a multi-loop chain.",
     )
-    length_unit: str = _unit_field()
-    plots: bool = _plots_field()
+    length_unit: str = unit_field()
+    plots: bool = plots_field()
 
     @model_validator(mode="after")
     def _valid_chains(self) -> ChainParallelismSpec:
@@ -251,7 +256,7 @@ class ChainParallelismSpec(FrozenSpec):
         for index, chain in enumerate(self.chains):
             if chain.name in seen:
                 errors.append(
-                    _error(
+                    chain_error(
                         ("chains", index, "name"),
                         (
                             f"chains[{index}].name: '{chain.name}' is also the name of "
@@ -261,16 +266,33 @@ class ChainParallelismSpec(FrozenSpec):
                     )
                 )
             seen.setdefault(chain.name, index)
+            spread = length_ratio_problem(_all_lengths(chain), f"chains[{index}]")
+            if spread is not None:
+                field = "lengths" if isinstance(chain, LoopChain) else "links"
+                errors.append(chain_error(("chains", index, field), spread, None))
+                continue
             for problem in chains.chain_problems(to_chain(chain)):
                 where = ("chains", index, *problem.where)
                 errors.append(
-                    _error(where, f"chains[{index}]{_path(problem.where)}: {problem.message}", None)
+                    chain_error(
+                        where, f"chains[{index}]{_path(problem.where)}: {problem.message}", None
+                    )
                 )
         if not errors:
             errors = _comparable(self.chains)
         if errors:
             raise ValidationError.from_exception_data(type(self).__name__, errors)
         return self
+
+
+def _all_lengths(chain: LoopChain | MultiLoopChain) -> list[float]:
+    """Every length of a chain: its binary links' and its polygonal links' sides."""
+    if isinstance(chain, LoopChain):
+        return list(chain.lengths)
+    found: list[float] = []
+    for value in chain.links.values():
+        found.extend(value.sides.values() if isinstance(value, PolygonalLink) else [value])
+    return found
 
 
 def _comparable(given: tuple[LoopChain | MultiLoopChain, ...]) -> list[InitErrorDetails]:
@@ -281,7 +303,7 @@ def _comparable(given: tuple[LoopChain | MultiLoopChain, ...]) -> list[InitError
     for index, structure in enumerate(structures[1:], start=1):
         if (len(structure.links), structure.mobility) != (len(first.links), first.mobility):
             errors.append(
-                _error(
+                chain_error(
                     ("chains", index),
                     (
                         f"chains[{index}]: '{given[index].name}' has {len(structure.links)} "
@@ -294,51 +316,3 @@ def _comparable(given: tuple[LoopChain | MultiLoopChain, ...]) -> list[InitError
                 )
             )
     return errors
-
-
-def _four_lengths(value: Any) -> Any:
-    if isinstance(value, list | tuple) and len(value) != 4:
-        raise ValueError(
-            f"lengths needs four link lengths in order round the loop, not {len(value)}"
-        )
-    return value
-
-
-class FourBarGrashofSpec(FrozenSpec):
-    """Inputs of ``fourbar-grashof``: a four-bar chain and its fixed link."""
-
-    lengths: Annotated[tuple[Length, Length, Length, Length], BeforeValidator(_four_lengths)] = (
-        Field(
-            ...,
-            description="The four link lengths in order round the loop; link i is joined to "
-            "links i-1 and i+1 (mod 4). Each must be shorter than the sum of the other three, "
-            "or the loop cannot be assembled (or only lies flat and cannot move).",
-        )
-    )
-    ground: int = Field(
-        ...,
-        ge=0,
-        le=3,
-        strict=True,
-        description="Index (0-3) of the fixed link. The input is link ground+1, the coupler "
-        "ground+2 and the output ground+3 (mod 4).",
-    )
-    length_unit: str = _unit_field()
-    plots: bool = _plots_field()
-
-    @model_validator(mode="after")
-    def _loop_closes(self) -> FourBarGrashofSpec:
-        """Like a chain's loop, a four-bar closes only if its longest link is shorter than
-        the sum of the other three (within :data:`CHANGE_POINT_RTOL` of the total)."""
-        longest = max(range(4), key=self.lengths.__getitem__)
-        rest = math.fsum(v for k, v in enumerate(self.lengths) if k != longest)
-        if self.lengths[longest] >= rest - CHANGE_POINT_RTOL * math.fsum(self.lengths):
-            message = (
-                f"lengths[{longest}]: the loop cannot close: link {longest} "
-                f"({self.lengths[longest]:g}) is not shorter than the sum of the other three "
-                f"({rest:g})"
-            )
-            raise ValidationError.from_exception_data(
-                type(self).__name__, [_error(("lengths", longest), message, self.lengths)]
-            )
-        return self

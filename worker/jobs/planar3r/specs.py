@@ -9,6 +9,7 @@ from __future__ import annotations
 
 from typing import Annotated, Any
 
+import numpy as np
 from pydantic import (
     AfterValidator,
     BaseModel,
@@ -20,6 +21,14 @@ from pydantic import (
     model_validator,
 )
 
+from worker.jobs.numeric_ranges import (
+    MAX_COORDINATE,
+    MIN_LENGTH,
+    Coordinate,
+    PositiveLength,
+    length_ratio_problem,
+    ratio_schema,
+)
 from worker.jobs.spec_base import MAX_POINTS_PER_AXIS, FrozenSpec, GridSpecBase
 
 __all__ = [
@@ -43,9 +52,12 @@ MAX_TRAJECTORY_SAMPLES = 10_000
 MAX_POLYLINE_VERTICES = 10_000
 MAX_POLYNOMIAL_COEFFICIENTS = 10
 
-Point = tuple[float, float]
-#: A link length: finite (the models reject NaN and infinity) and positive.
-Length = Annotated[float, Field(gt=0)]
+#: A position in the plane, each coordinate in [-1e6, 1e6].
+Point = tuple[Coordinate, Coordinate]
+#: A link length in [1e-6, 1e6] (worker.jobs.numeric_ranges).
+Length = PositiveLength
+#: A polynomial coefficient (the trajectory's y must stay within the coordinate range).
+Coefficient = Annotated[float, Field(ge=-MAX_COORDINATE, le=MAX_COORDINATE)]
 JointLimitsDeg = tuple[tuple[float, float], tuple[float, float], tuple[float, float]]
 
 
@@ -65,13 +77,25 @@ def default_task_labels(count: int) -> tuple[str, ...]:
 class GridSpec(GridSpecBase):
     """The evaluation grid: ``points_per_axis`` nodes on each axis, ends included."""
 
-    bounds: tuple[float, float, float, float] | None = Field(
+    bounds: tuple[Coordinate, Coordinate, Coordinate, Coordinate] | None = Field(
         None,
         description=(
-            "[x_min, x_max, y_min, y_max] of the grid. Default: the square "
-            "±1.05·(l1 + l2 + l3) around the base, which holds the whole reachable disk."
+            "[x_min, x_max, y_min, y_max] of the grid, each in [-1e6, 1e6], each side at "
+            "least 1e-6 long. Default: the square ±1.05·(l1 + l2 + l3) around the base, "
+            "which holds the whole reachable disk."
         ),
     )
+
+    @model_validator(mode="after")
+    def _wide_enough(self) -> GridSpec:
+        if self.bounds is not None:
+            x_min, x_max, y_min, y_max = self.bounds
+            if x_max - x_min < MIN_LENGTH or y_max - y_min < MIN_LENGTH:
+                raise ValueError(
+                    f"bounds: each side of the grid must be at least {MIN_LENGTH:g} long "
+                    f"(x: {x_max - x_min:g}, y: {y_max - y_min:g})"
+                )
+        return self
 
 
 class PolylineTrajectory(FrozenSpec):
@@ -102,15 +126,15 @@ class PolylineTrajectory(FrozenSpec):
 class PolynomialTrajectory(FrozenSpec):
     """A trajectory y = a_n x^n + ... + a_0 for x from ``x_start`` to ``x_end``."""
 
-    polynomial: tuple[float, ...] = Field(
+    polynomial: tuple[Coefficient, ...] = Field(
         ...,
         min_length=1,
         max_length=MAX_POLYNOMIAL_COEFFICIENTS,
         description="Coefficients [a_n, ..., a_1, a_0] of y(x), highest power first "
         f"(1..{MAX_POLYNOMIAL_COEFFICIENTS} of them).",
     )
-    x_start: float = Field(..., description="x at the start of the trajectory.")
-    x_end: float = Field(..., description="x at the end of the trajectory (≠ x_start).")
+    x_start: Coordinate = Field(..., description="x at the start of the trajectory.")
+    x_end: Coordinate = Field(..., description="x at the end of the trajectory (≠ x_start).")
     samples: int = Field(
         200,
         ge=2,
@@ -121,8 +145,19 @@ class PolynomialTrajectory(FrozenSpec):
 
     @model_validator(mode="after")
     def _distinct_ends(self) -> PolynomialTrajectory:
-        if self.x_start == self.x_end:
-            raise ValueError(f"x_start and x_end must differ (both are {self.x_start:g})")
+        if abs(self.x_end - self.x_start) < MIN_LENGTH:
+            raise ValueError(
+                f"x_start and x_end must differ by at least {MIN_LENGTH:g} "
+                f"({self.x_start:g} and {self.x_end:g})"
+            )
+        x = np.linspace(self.x_start, self.x_end, self.samples)
+        with np.errstate(all="ignore"):
+            y = np.polyval(np.asarray(self.polynomial, dtype=float), x)
+        if not np.all(np.isfinite(y)) or float(np.max(np.abs(y))) > MAX_COORDINATE:
+            raise ValueError(
+                f"polynomial: y(x) leaves [-{MAX_COORDINATE:g}, {MAX_COORDINATE:g}] between "
+                f"x_start and x_end; every trajectory point must be a valid coordinate"
+            )
         return self
 
 
@@ -153,7 +188,10 @@ Trajectory = Annotated[
     ),
 ]
 
-_LINKS_DESCRIPTION = "Link lengths [l1, l2, l3], from the base to the end-effector (each > 0)."
+_LINKS_DESCRIPTION = (
+    "Link lengths [l1, l2, l3], from the base to the end-effector, each in [1e-6, 1e6], "
+    "the longest at most 1e6 times the shortest."
+)
 _LIMITS_DESCRIPTION = (
     "Joint limits [[lo, hi], [lo, hi], [lo, hi]] in degrees for joints 1..3, with "
     "-180 <= lo <= hi <= 180; joint angles are wrapped to (-180, 180]. Omit for fully "
@@ -250,15 +288,23 @@ class _ArmSpec(FrozenSpec):
     links: Annotated[
         tuple[Length, Length, Length],
         _three_entries("links needs three lengths [l1, l2, l3]"),
-    ] = Field(..., description=_LINKS_DESCRIPTION)
+    ] = Field(..., description=_LINKS_DESCRIPTION, json_schema_extra=ratio_schema())
+
+    @field_validator("links")
+    @classmethod
+    def _spread(cls, links: tuple[float, float, float]) -> tuple[float, float, float]:
+        problem = length_ratio_problem(links, "links")
+        if problem is not None:
+            raise ValueError(problem)
+        return links
 
 
 class _DesignSpec(FrozenSpec):
-    l3: float = Field(
+    l3: Length = Field(
         ...,
-        gt=0,
-        description="Length of the last link (the paper chooses l3 < d_min; full dexterity "
-        "over the task needs l3 + |l1 - l2| <= d_min, i.e. l3 <= d_min - 1).",
+        description="Length of the last link, in [1e-6, 1e6] (the paper chooses "
+        "l3 < d_min; full dexterity over the task needs l3 + |l1 - l2| <= d_min, i.e. "
+        "l3 <= d_min - 1).",
     )
     round_distances: bool = Field(
         False,

@@ -11,7 +11,7 @@ from tests.unit.worker.jobs.conftest import RecordingContext, unrendered_artifac
 from worker.contract import JobOutcome
 from worker.jobs.chains import FOURBAR_GRASHOF, fourbar
 from worker.jobs.chains.examples import FOURBAR_GRASHOF_EXAMPLES
-from worker.jobs.chains.specs import FourBarGrashofSpec
+from worker.jobs.chains.fourbar_spec import FourBarGrashofSpec
 
 RESULT_KEYS = {
     "lengths", "ground", "grashof", "classification", "barker", "criterion", "links",

@@ -20,9 +20,9 @@ from worker.jobs.chains.costs import (
     fourbar_grashof_cost,
 )
 from worker.jobs.chains.examples import FIG_2, FIG_4A, FIG_4B
+from worker.jobs.chains.fourbar_spec import FourBarGrashofSpec
 from worker.jobs.chains.specs import (
     ChainParallelismSpec,
-    FourBarGrashofSpec,
     LoopChain,
     MultiLoopChain,
     PolygonalLink,
@@ -182,7 +182,7 @@ FIELD_ERRORS = [
     ({"chains": [fig_4a(loops=[])]}, "loops must have 1 to 16 entries, not 0"),
     ({"chains": [fig_4a(loops=[[]])]}, "a loop must have 1 to 16 entries, not 0"),
     ({"chains": [fig_4a(links={**FIG_4A["links"], "2": "long"})]}, "a link must be a length"),
-    ({"chains": [loop("q", [1, 2, -3, 4])]}, "greater than 0"),
+    ({"chains": [loop("q", [1, 2, -3, 4])]}, "greater than or equal to 0.000001"),
     ({"chains": [loop("q", [1, 2, float("nan"), 4])]}, "finite number"),
     ({"chains": [{"name": "q"}]}, "either 'lengths'"),
     ({"chains": [{**loop("q", [1, 2, 3]), "links": {}}]}, "either 'lengths'"),
@@ -214,7 +214,7 @@ def test_field_errors(inputs: dict[str, Any], message: str) -> None:
 
 FOURBAR_ERRORS = [
     ({"lengths": [1, 2, 3], "ground": 0}, r"lengths needs four link lengths .*, not 3"),
-    ({"lengths": [1, 2, 3, 0], "ground": 0}, "greater than 0"),
+    ({"lengths": [1, 2, 3, 0], "ground": 0}, "greater than or equal to 0.000001"),
     ({"lengths": [1, 2, 3, 4], "ground": 4}, "less than or equal to 3"),
     ({"lengths": [1, 2, 3, 4], "ground": -1}, "greater than or equal to 0"),
     ({"lengths": [1, 2, 3, 4]}, r"ground\n  Field required"),

@@ -92,8 +92,8 @@ def test_specs_round_trip_through_json() -> None:
 # -- invalid inputs ------------------------------------------------------------------
 
 MAP_ERRORS = [
-    ({"links": [15, 14, -8]}, r"links\.2\n  Input should be greater than 0"),
-    ({"links": [0, 14, 8]}, r"links\.0\n  Input should be greater than 0"),
+    ({"links": [15, 14, -8]}, r"links\.2\n  Input should be greater than or equal to 0.000001"),
+    ({"links": [0, 14, 8]}, r"links\.0\n  Input should be greater than or equal to 0.000001"),
     ({"links": [15, 14]}, r"links needs three lengths \[l1, l2, l3\], not 2"),
     ({"links": [15, 14, float("nan")]}, "finite number"),
     ({"links": [15, float("inf"), 8]}, "finite number"),
@@ -161,8 +161,8 @@ def test_trajectory_errors_name_the_branch() -> None:
 
 SYNTHESIS_ERRORS = [
     ({"task_points": None}, "needs task_points or a trajectory"),
-    ({"l3": 0}, "greater than 0"),
-    ({"l3": -1}, "greater than 0"),
+    ({"l3": 0}, "greater than or equal to 0.000001"),
+    ({"l3": -1}, "greater than or equal to 0.000001"),
     ({"l3": float("inf")}, "finite number"),
     ({"round_distances": "sometimes"}, "valid boolean"),
     ({"links": LINKS}, "Extra inputs are not permitted"),
