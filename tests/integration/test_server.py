@@ -17,6 +17,7 @@ import pytest
 
 from tests.integration.servers import (
     BACKENDS,
+    TERMINAL,
     Deployment,
     deployment,
     kill_group,
@@ -217,10 +218,20 @@ def test_two_workers_share_a_batch(backend: str, tmp_path: Path) -> None:
             .json()["jobID"]
             for n in range(8)
         ]
-        finals = [wait_terminal(client, job_id, timeout=180) for job_id in ids]
-        groups = {w.pid: set(group_pids(w.pid)) for w in dep.workers}
+        # Which processes belong to which worker, sampled while the jobs run: a Celery
+        # worker may replace a pool child after its job, and a finished child is gone.
+        groups: dict[int, set[int]] = {w.pid: set() for w in dep.workers}
+        deadline = time.monotonic() + 180
+        while True:
+            for w in dep.workers:
+                groups[w.pid].update(group_pids(w.pid))
+            docs = [client.get(f"/v1/jobs/{job_id}").json() for job_id in ids]
+            if all(d["status"] in TERMINAL for d in docs) or time.monotonic() > deadline:
+                break
+            time.sleep(0.1)
+        finals = [wait_terminal(client, job_id, timeout=5) for job_id in ids]
         assert all(f["status"] == "successful" and f["attempts"] == 1 for f in finals), finals
-        ran_on = {next(g for g, pids in groups.items() if pid_of(f) in pids) for f in finals}
+        ran_on = {g for f in finals for g, pids in groups.items() if pid_of(f) in pids}
         assert ran_on == set(groups), f"only {ran_on} of {set(groups)} did any work"
 
 
