@@ -52,6 +52,9 @@ class ProcessDefinition:
     #: Requests costing at most this may be answered synchronously (``Prefer: wait=N``);
     #: 0: never.
     sync_cost_limit: int = 0
+    #: The method page in ``docs/methods/<method_doc>.md`` that explains this process
+    #: (equations, conventions, the paper's errata, citation); "" for none.
+    method_doc: str = ""
 
     @cached_property
     def inputs_schema(self) -> dict[str, Any]:

@@ -46,6 +46,7 @@ def _run_fourbar_grashof(spec: FourBarGrashofSpec, ctx: JobContext) -> JobOutcom
 
 
 CHAIN_PARALLELISM = ProcessDefinition(
+    method_doc="chains",
     id="chain-parallelism",
     title="Kinematic chains: uniform rigidity (P) and parallelism (Q)",
     description=(
@@ -89,6 +90,7 @@ CHAIN_PARALLELISM = ProcessDefinition(
 )
 
 FOURBAR_GRASHOF = ProcessDefinition(
+    method_doc="chains",
     id="fourbar-grashof",
     title="Four-bar chain: Grashof type, Barker's class and fully turning links",
     description=(

@@ -42,6 +42,7 @@ def _run_optimisation(spec: OptimisationSpec, ctx: JobContext) -> JobOutcome:
 
 
 CONDITIONING_MAP = ProcessDefinition(
+    method_doc="planar-parallel",
     id="planar2dof-conditioning-map",
     title="2-DOF planar parallel robot: conditioning map",
     description=(
@@ -91,6 +92,7 @@ CONDITIONING_MAP = ProcessDefinition(
 )
 
 OPTIMISATION = ProcessDefinition(
+    method_doc="planar-parallel",
     id="planar2dof-optimisation",
     title="2-DOF planar parallel robot: optimum design (proximal arms)",
     description=(

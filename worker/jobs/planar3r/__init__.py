@@ -44,6 +44,7 @@ _LIMITS_TEXT = (
 )
 
 DEXTERITY_MAP = ProcessDefinition(
+    method_doc="planar-serial",
     id="planar3r-dexterity-map",
     title="Three-link planar arm: dexterity map",
     description=(
@@ -88,6 +89,7 @@ DEXTERITY_MAP = ProcessDefinition(
 )
 
 SYNTHESIS = ProcessDefinition(
+    method_doc="planar-serial",
     id="planar3r-synthesis",
     title="Three-link planar arm: link lengths from task points or a trajectory",
     description=(

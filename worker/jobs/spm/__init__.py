@@ -79,6 +79,7 @@ _INDICES = (
 )
 
 CONDITIONING_MAP = ProcessDefinition(
+    method_doc="spherical-parallel",
     id="spm-conditioning-map",
     title="Spherical parallel manipulator: conditioning over a workspace",
     description=(
@@ -126,6 +127,7 @@ CONDITIONING_MAP = ProcessDefinition(
 )
 
 DESIGN_SPACE = ProcessDefinition(
+    method_doc="spherical-parallel",
     id="spm-design-space",
     title="Spherical parallel manipulator: design space for a prescribed workspace",
     description=(
@@ -165,6 +167,7 @@ DESIGN_SPACE = ProcessDefinition(
 )
 
 OPTIMISATION = ProcessDefinition(
+    method_doc="spherical-parallel",
     id="spm-optimisation",
     title="Spherical parallel manipulator: optimum design for a prescribed workspace",
     description=(
