@@ -9,6 +9,11 @@ COPY worker ./worker
 # The same install as the README's, with the scale-out extra (Celery, Redis/AMQP
 # clients, psycopg) so one image serves as API or worker, embedded or distributed.
 RUN pip install --no-cache-dir '.[distributed]'
+# The method pages (docs/methods/*.md) the service renders at /methods/<page>: a
+# non-editable install does not carry them, so they live beside the package (copied
+# after the install, so that editing a page does not redo it).
+COPY docs ./docs
+ENV DEXLAB_DOCS_DIR=/app/docs
 
 RUN useradd --create-home dexlab && mkdir /data && chown dexlab /data
 USER dexlab

@@ -68,12 +68,20 @@ class JobOutcome:
     ``result`` must be JSON-serialisable (plain dicts, lists, str, float, int, bool,
     None).  Numerical outcomes (an optimiser that did not converge, a design that leaves
     a task point short of full dexterity) belong in ``result`` and ``notes``, not in
-    exceptions.
+    exceptions.  ``errata`` are the notes that set the request against a paper's
+    printed values (its errata, found by re-computation; ``docs/methods/``): the result
+    document lists them after ``notes`` and again under ``paper_errata``.
     """
 
     result: Mapping[str, Any]
     artifacts: tuple[Artifact, ...] = ()
     notes: tuple[str, ...] = ()
+    errata: tuple[str, ...] = ()
+
+    @property
+    def all_notes(self) -> tuple[str, ...]:
+        """The notes as the result document lists them: ``notes``, then ``errata``."""
+        return (*self.notes, *self.errata)
 
 
 class JobContext(Protocol):

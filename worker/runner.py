@@ -205,7 +205,8 @@ class WorkerLoop:
             record_failure(self.store, claim, error_document(exc), self._give_up_after_s)
             return None
         result = dict(outcome.result)
-        result["notes"] = list(outcome.notes)
+        result["notes"] = list(outcome.all_notes)
+        result["paper_errata"] = list(outcome.errata)
         return result, list(outcome.artifacts)
 
 

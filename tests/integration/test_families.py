@@ -51,7 +51,9 @@ def test_worked_example_runs_to_success(embedded: Deployment, process_id: str, i
     assert status["status"] == "successful", status
     results = client.get(f"/v1/jobs/{job_id}/results").json()
     assert results["result"], results
-    assert isinstance(results["result"]["notes"], list)
+    notes, errata = results["result"]["notes"], results["result"]["paper_errata"]
+    assert isinstance(notes, list) and isinstance(errata, list)
+    assert notes[len(notes) - len(errata) :] == errata  # the paper's errata come last
     check_artifacts(client, results)
 
 

@@ -1,6 +1,6 @@
 """Planar kinematic chains as plain data, and the parallelism measures P and Q.
 
-The paper is ``papers/kinematic-chain-parallelism.txt``; METHODS.md §4 states the method
+docs/methods/chains.md states the method, cites the paper
 cleanly and is followed where the two differ.
 
 A :class:`Chain` is links and loops.  A link is binary (one length) or polygonal (one

@@ -4,7 +4,7 @@ Patel & Sobh (2012) §3, eqs (6)-(7): a four-bar chain with shortest link s, lon
 and the other two p, q has a fully rotatable link iff ``s + l <= p + q`` (Grashof); in a
 Grashof chain the shortest link turns fully relative to every other link. §4 closes a
 three-link arm (l1, l2, l3) with the virtual ground link d = |p| (base to end-effector);
-METHODS.md §1 states when that makes the end-effector link turn fully.
+docs/methods/planar-serial.md states when that makes the end-effector link turn fully.
 """
 
 from __future__ import annotations
@@ -77,7 +77,7 @@ def four_bar_check(
 def end_effector_fully_rotatable(links: ArrayLike, distance: float) -> bool:
     """Whether the end-effector link turns fully at distance d from the base.
 
-    Builds the virtual four-bar (l1, l2, l3, d) of §4 and applies METHODS.md §1: l3
+    Builds the virtual four-bar (l1, l2, l3, d) of §4 and applies docs/methods/planar-serial.md: l3
     turns fully relative to the ground d iff the chain is Grashof (eq 6) and its shortest
     link is l3 or d (ties included; a shortest l1 makes l1 the crank, a shortest l2 a
     double rocker). This equals ``exact_orientation_dexterity(links, p) == 1`` for |p| = d.

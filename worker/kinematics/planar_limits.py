@@ -1,10 +1,10 @@
 """Orientation dexterity of three-link planar arms with joint limits, by sampling.
 
-The vectorised kernel behind :func:`limited_orientation_dexterity` (METHODS.md §1,
-"With joint limits"): every joint-limit test at a sample phi_k is linear in the point
-features [px, py, 1, |p|^2], so a whole block of points x orientations is one matrix
-product, and changes of feasibility can be bisected (``refine_tol``). Conventions as
-in :mod:`worker.kinematics.planar_serial`.
+The vectorised kernel behind :func:`limited_orientation_dexterity` (docs/methods/planar-serial.md,
+"Joint limits: orientation sampling"): every joint-limit test at a sample phi_k is linear
+in the point features [px, py, 1, |p|^2], so a whole block of points x orientations is
+one matrix product, and changes of feasibility can be bisected (``refine_tol``).
+Conventions as in :mod:`worker.kinematics.planar_serial`.
 """
 
 from __future__ import annotations
@@ -168,7 +168,7 @@ def limited_orientation_dexterity(
     max_chunk_elements: int = 2**22,
     on_chunk: Callable[[int, int], None] | None = None,
 ) -> FloatArray:
-    """d_z with joint limits by orientation sampling (METHODS.md §1, "With joint limits").
+    """d_z with joint limits by orientation sampling (docs/methods/planar-serial.md).
 
     links: (3,); points: (..., 2); joint_limits: (3, 2) rad ``[[lo, hi], ...]`` with
     -pi <= lo <= hi <= pi, joint angles wrapped to (-pi, pi]; step: requested sample

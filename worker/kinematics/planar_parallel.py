@@ -3,7 +3,8 @@
 
 Huang, Li, Li, Chetwynd & Whitehouse, "Optimal kinematic design of 2-DOF parallel
 manipulators with well-shaped workspace bounded by a specified conditioning index",
-IEEE T-RA 20(3) 2004, restated in METHODS.md §2, which wins where the two disagree.
+IEEE T-RA 20(3) 2004, restated in docs/methods/planar-parallel.md, which wins where the two
+disagree.
 
 Conventions (details in :mod:`worker.kinematics.planar_parallel_model`): chain i = 1 on
 the +x side, actuated joints at (+-e, 0), end-effector point r = (x, y), lengths in one

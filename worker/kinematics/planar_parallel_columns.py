@@ -1,4 +1,6 @@
-"""Column-wise description of W_kappa0 = {reachable, 1/kappa >= limit} (METHODS.md §2).
+"""Column-wise description of W_kappa0 = {reachable, 1/kappa >= limit}.
+
+See docs/methods/planar-parallel.md, "The well-conditioned workspace".
 
 The paper finds the boundary of W_kappa0 by a 1-D root search (§III-C-1). Here the
 search runs along vertical lines x = const ("columns"), batched over many columns and

@@ -1,5 +1,5 @@
 """The isotropic design of eq (12) and the isotropic (or best-conditioned) point of a
-2-DOF planar parallel robot (Huang et al. 2004 §III-B, eqs 10-12; METHODS.md §2).
+2-DOF planar parallel robot (Huang et al. 2004 §III-B, eqs 10-12; docs/methods/planar-parallel.md).
 
 Re-exported by :mod:`worker.kinematics.planar_parallel`; conventions as there.
 """

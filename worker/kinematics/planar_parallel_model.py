@@ -3,7 +3,8 @@ and the batched chain kernel (inverse kinematics, A and B of eq 4, 1/kappa of eq
 
 Huang et al., "Optimal kinematic design of 2-DOF parallel manipulators with well-shaped
 workspace bounded by a specified conditioning index" (IEEE T-RA 2004), restated in
-METHODS.md §2. Import the public names from :mod:`worker.kinematics.planar_parallel`.
+docs/methods/planar-parallel.md. Import the public names from
+:mod:`worker.kinematics.planar_parallel`.
 
 Geometry (Fig. 1), mirror-symmetric about the y axis, chain i = 1 on the +x side
 (``sgn(1) = +1``, ``sgn(2) = -1``), end-effector reference point ``r = (x, y)``:
@@ -17,8 +18,8 @@ Geometry (Fig. 1), mirror-symmetric about the y axis, chain i = 1 on the +x side
   e and l1 are not used (no stroke limits).
 
 Working mode ``(m1, m2)``, each +1 or -1: for the proximal arm m_i is the sign in front
-of the square root of eq (2); the paper's mode is (+1, -1) (METHODS.md). Equivalently
-``th_1i = atan2(p_iy, p_ix) + m_i acos((|p_i|^2 + l1^2 - l2^2) / (2 l1 |p_i|))`` with
+of the square root of eq (2); the paper's mode is (+1, -1) (docs/methods/planar-parallel.md).
+Equivalently ``th_1i = atan2(p_iy, p_ix) + m_i acos((|p_i|^2 + l1^2 - l2^2) / (2 l1 |p_i|))`` with
 ``p_i = r - sgn(i) e e1``, which is what the kernel evaluates (trig-free). For the linear
 drive m_i = +1 puts slider i on the +x side of r: ``q_i = x + m_i sqrt(l2^2 - y^2)``.
 The telescopic leg has one solution and ignores the mode. The pair is mirror-symmetric
@@ -80,7 +81,7 @@ class Architecture:
     """Dimensions of a mirror-symmetric 2-DOF planar parallel robot (Fig. 1).
 
     actuation: which of Fig. 1's types; l1: proximal arm length (1 normalises the
-    proximal-arm type, METHODS.md §2); l2: distal link length (delta = l2 / l1);
+    proximal-arm type, docs/methods/planar-parallel.md); l2: distal link length (delta = l2 / l1);
     e: distance from O to each actuated joint, >= 0. Lengths in one unit, any unit.
     l1 and l2 are unused by the telescopic leg, l1 and e by the linear drive (they are
     still checked: finite, lengths positive).

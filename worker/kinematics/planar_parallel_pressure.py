@@ -1,5 +1,5 @@
 """Pressure angles (eq 15) and the conditioning limit they set (eqs 16-17 then 7) for
-2-DOF planar parallel robots (Huang et al. 2004 §III-C-2; METHODS.md §2).
+2-DOF planar parallel robots (Huang et al. 2004 §III-C-2; docs/methods/planar-parallel.md).
 
 Re-exported by :mod:`worker.kinematics.planar_parallel`; conventions as there. The
 paper's pressure angle beta_i is the acute angle between proximal and distal link,
@@ -123,9 +123,9 @@ def max_condition_limit(
     """(max over delta of 1/kappa0, the delta at the max), eq (17) then eq (7) (Fig. 7).
 
     1501 samples over ``delta_range`` then a bounded Brent refinement (xatol 1e-12).
-    METHODS.md: 30 deg -> 0.52555 at 1.7445; 35 deg -> 0.57672 at 1.9185. Only deltas where
-    eq (17)'s point is in reach of both chains count (delta < delta_+, 2.618 to 3.732 by
-    [beta]); (nan, nan) if it is out of reach all over ``delta_range``.
+    30 deg -> 0.52555 at 1.7445; 35 deg -> 0.57672 at 1.9185 (docs/methods/planar-parallel.md).
+    Only deltas where eq (17)'s point is in reach of both chains count (delta < delta_+,
+    2.618 to 3.732 by [beta]); (nan, nan) if it is out of reach all over ``delta_range``.
     """
     function = "max_condition_limit"
     try:

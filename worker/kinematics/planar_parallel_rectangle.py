@@ -1,5 +1,5 @@
 """The largest rectangle W_lambda of aspect lambda = b/h, centred on x = 0, inside
-W_kappa0 (METHODS.md §2, Fig. 6), solved for a batch of architectures at once.
+W_kappa0 (docs/methods/planar-parallel.md, Fig. 6), solved for a batch of architectures at once.
 
 Method. With W_kappa0 described column-wise by its lowest run [L(x), T(x)]
 (:mod:`worker.kinematics.planar_parallel_columns`), the rectangle |x| <= w,

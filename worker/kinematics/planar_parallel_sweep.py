@@ -157,7 +157,8 @@ def design_sweep(
     limit: 1/kappa0 (e.g. :func:`max_condition_limit`'s, or the paper's printed 0.526);
     deltas (n,) >= 1, increasing; mesh: nodes per side for eq (14); on_row(done, n) is
     called as rows complete (in chunks of ``chunk`` deltas). Rectangle settings as
-    :func:`largest_rectangle`. S_max is taken over the swept deltas (METHODS: [1, 2.5]).
+    :func:`largest_rectangle`. S_max is taken over the swept deltas (the paper's
+    [1, 2.5] by default, docs/methods/planar-parallel.md).
     """
     value = checked_limit(limit, "design_sweep")
     ds = _checked_deltas(deltas)

@@ -1,5 +1,5 @@
 """W_kappa0, its largest centred rectangle W_lambda and the mean 1/kappa over W_lambda
-(Huang et al. 2004 §III-C; METHODS.md §2). Re-exported by
+(Huang et al. 2004 §III-C; docs/methods/planar-parallel.md). Re-exported by
 :mod:`worker.kinematics.planar_parallel`; conventions as there.
 
 W_kappa0 = {reachable points of the working mode with 1/kappa >= limit}. It is found
@@ -227,9 +227,10 @@ def mean_inverse_condition(
 ) -> float:
     """Mean 1/kappa over the mesh x mesh nodes of W_lambda, eq (14) (edges included).
 
-    Nodes: x = linspace(-b/2, b/2, mesh), y = linspace(-H' - h/2, -H' + h/2, mesh); METHODS
-    uses 101 x 101 (report the mesh: 5 x 5 and 401 x 401 differ in the 2nd and 4th
-    decimals). NaN if the rectangle was not found; NaN if a node is unreachable.
+    Nodes: x = linspace(-b/2, b/2, mesh), y = linspace(-H' - h/2, -H' + h/2, mesh); the
+    jobs use 101 x 101 by default (report the mesh: 5 x 5 and 401 x 401 differ in the 2nd
+    and 4th decimals, docs/methods/planar-parallel.md). NaN if the rectangle was not found; NaN if a
+    node is unreachable.
     """
     function = "mean_inverse_condition"
     rect = _checked_rectangle(rect, function)

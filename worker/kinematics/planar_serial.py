@@ -1,7 +1,7 @@
 """Three-link planar serial arms (RRR): kinematics, orientation dexterity and synthesis.
 
 Patel & Sobh, "Optimal Design of Three-Link Planar Manipulators Using Grashof's
-Criterion" (2012), restated in METHODS.md §1, which wins where the two disagree.
+Criterion" (2012), restated in docs/methods/planar-serial.md, which wins where the two disagree.
 
 Conventions: links ``(l1, l2, l3)`` run from the base (at the origin) to the
 end-effector, in any one length unit; angles are in radians; the end-effector
@@ -89,7 +89,7 @@ def reach_radii(links: ArrayLike) -> tuple[float, float]:
 
 
 def exact_orientation_dexterity(links: ArrayLike, points: ArrayLike) -> FloatArray:
-    """Closed-form d_z with unlimited joints (METHODS.md §1; eqs 3 and 5).
+    """Closed-form d_z with unlimited joints (docs/methods/planar-serial.md; eqs 3 and 5).
 
     points: (..., 2) in the links' unit. Returns d_z (...) in [0, 1]:
     ``d_z = [acos(clip(c_lo)) - acos(clip(c_hi))] / pi`` with
@@ -114,7 +114,7 @@ def exact_orientation_dexterity(links: ArrayLike, points: ArrayLike) -> FloatArr
 
 
 def full_dexterity_bands(links: ArrayLike) -> tuple[tuple[float, float], ...]:
-    """Closed radius intervals where d_z == 1 with unlimited joints (METHODS.md §1).
+    """Closed radius intervals where d_z == 1 with unlimited joints (docs/methods/planar-serial.md).
 
     ``[0, min(l3 - |l1-l2|, l1+l2-l3)]`` ∪ ``[l3 + |l1-l2|, l1+l2-l3]``; empty pieces
     dropped, sorted, touching or overlapping pieces merged. This corrects the paper's
@@ -181,8 +181,8 @@ def synthesise_links(d_min: float, d_max: float, l3: float) -> Links:
     """Link lengths by eqs (10)-(11): l1 = (d_max + l3)/2 + 1, l2 = (d_max + l3)/2.
 
     The "+1" (in the task's length unit) makes |l1 - l2| = 1, so full dexterity at d_min
-    needs l3 + 1 <= d_min (METHODS.md §1), not only the paper's l3 < d_min; callers check
-    that. Returns (l1, l2, l3).
+    needs l3 + 1 <= d_min, not only the paper's l3 < d_min (docs/methods/planar-serial.md); callers
+    check that. Returns (l1, l2, l3).
     """
     if not (math.isfinite(l3) and l3 > 0):
         raise bad_parameter("l3", "synthesise_links", "a finite positive length", l3)

@@ -1,8 +1,8 @@
 """How close the platform axis of leg 1 comes to a fixed direction over a workspace.
 
-The limited-torsion half of the design space (METHODS.md §3, eqs 16-19): D1 and D2 are
-the least angles between v_1 and -n_1, n_1 over the CONTINUOUS workspace. v_1 is a
-low-order trigonometric polynomial of x = (f1, psi2, psi3), f1 = -psi1 (the terms of
+The limited-torsion half of the design space (docs/methods/spherical-parallel.md, eqs 16-19):
+D1 and D2 are the least angles between v_1 and -n_1, n_1 over the CONTINUOUS workspace.
+v_1 is a low-order trigonometric polynomial of x = (f1, psi2, psi3), f1 = -psi1 (the terms of
 :class:`~worker.kinematics.spherical_indices.SampleSet` at eta = 0), so the least chord
 |v_1 - t| is found from the discrete local minima of a grid, each polished by projected
 Newton steps (polar tilt coordinates; good at minima above zero), then the best ends and

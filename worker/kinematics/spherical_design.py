@@ -1,4 +1,5 @@
-"""Design space of SPMs for a prescribed workspace (Bai 2010 eqs 14-19, METHODS.md §3).
+"""Design space of SPMs for a prescribed workspace (Bai 2010 eqs 14-19; see
+docs/methods/spherical-parallel.md).
 
 With n_i = -u_i and f_i = n_i . v_i over the CONTINUOUS workspace, a leg closes
 everywhere iff |a1 - a2| <= D1 = acos(-f_min) and |a1 + a2 - pi| <= D2 = acos(f_max):

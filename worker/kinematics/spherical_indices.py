@@ -149,7 +149,7 @@ class SampleSet:
 
 @dataclass(frozen=True, eq=False)
 class Indices:
-    """Conditioning of one design over n equal-weight samples (METHODS.md §3).
+    """Conditioning of one design over n equal-weight samples (docs/methods/spherical-parallel.md).
 
     rms_inverse_condition: C_n = sqrt(mean(1/kappa^2)) (eq 25, the quadratic mean);
     mean_square_inverse_condition: mean(1/kappa^2) (eq 28, the objective, and what the
@@ -225,7 +225,7 @@ def workspace_minimum(
     branch: int = -1,
     grid: tuple[int, int, int] = (24, 13, 72),
 ) -> WorkspaceMinimum:
-    """Least 1/kappa over the closed workspace, boundary included (METHODS.md §3).
+    """Least 1/kappa over the closed workspace, boundary included.
 
     grid: (azimuth, tilt, torsion) counts of
     :func:`~worker.kinematics.spherical_workspace.boundary_grid` (the default steps

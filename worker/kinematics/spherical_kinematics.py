@@ -1,7 +1,7 @@
 """Kinematics of spherical parallel manipulators: axes, inverse kinematics, Jacobian, kappa.
 
-Bai (2010) eqs 2-12 and 21-22, restated in METHODS.md §3. Legs i = 1, 2, 3 sit at
-eta_i = 2 (i - 1) pi / 3. Unit-vector arrays have shape (..., 3, 3): axis -2 is the leg,
+Bai (2010) eqs 2-12 and 21-22, restated in docs/methods/spherical-parallel.md. Legs i = 1, 2, 3
+sit at eta_i = 2 (i - 1) pi / 3. Unit-vector arrays have shape (..., 3, 3): axis -2 is the leg,
 axis -1 is (x, y, z). Everything is batched on the leading axes of ``psi`` / ``theta``
 (broadcast together); angles are in radians.
 

@@ -1,6 +1,6 @@
 """Design and workspace records of spherical parallel manipulators, and their input checks.
 
-Bai (2010), restated in METHODS.md §3. Both records validate themselves on
+Bai (2010), restated in docs/methods/spherical-parallel.md. Both records validate themselves on
 construction (the boundary); every function taking them trusts them. Angles are in
 radians; :meth:`SpmDesign.from_degrees` and :meth:`SpmDesign.degrees` are conveniences
 for callers that speak degrees.
@@ -41,7 +41,7 @@ def _is_real(value: object) -> bool:
 
 @dataclass(frozen=True)
 class SpmDesign:
-    """Design parameters (rad) of a spherical parallel manipulator (METHODS.md §3).
+    """Design parameters (rad) of a spherical parallel manipulator.
 
     alpha1: base-side link angle, in (0, pi); alpha2: platform-side link angle, in
     (0, pi); beta: half-angle of the mobile pyramid, in (0, pi); gamma: half-angle of the

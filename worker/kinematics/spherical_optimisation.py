@@ -1,4 +1,5 @@
-"""Optimum SPM design for a prescribed workspace (Bai 2010 §5, eqs 28-30; METHODS.md §3).
+"""Optimum SPM design for a prescribed workspace (Bai 2010 §5, eqs 28-30; see
+docs/methods/spherical-parallel.md).
 
 Maximising eq 28, C = mean(1/kappa_k^2), is solved as nonlinear least squares with
 residuals ``r_k = sqrt(1 - 1/kappa_k^2)``: ``||r||^2 = n (1 - C)``, so minimising it is

@@ -2,8 +2,8 @@
 design space and optimum design for a prescribed workspace.
 
 S. Bai, "Optimum design of spherical parallel manipulators for a prescribed workspace",
-Mech. Mach. Theory 45 (2010) 200-211, restated in METHODS.md §3, which wins where the two
-disagree (the paper's formulas are garbled by text extraction; its printed "C_n" is
+Mech. Mach. Theory 45 (2010) 200-211, restated in docs/methods/spherical-parallel.md, which wins
+where the two disagree (the paper's formulas are garbled by text extraction; its printed "C_n" is
 mean(1/kappa^2), eq 28, not the root mean square of eq 25).
 
 Conventions: every angle is in RADIANS (degrees belong to the job layer); legs

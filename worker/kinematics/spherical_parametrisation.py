@@ -1,4 +1,4 @@
-"""Solver variables <-> designs inside the design space (METHODS.md §3, feasibility).
+"""Solver variables <-> designs inside the design space (docs/methods/spherical-parallel.md).
 
 With D1, D2 the design-space half-widths (eq 19) at the current (beta, gamma) over the
 CONTINUOUS workspace, free link angles are ``a1 - a2 = s D1``, ``a1 + a2 - pi = t D2``,
@@ -91,7 +91,7 @@ class Parametrisation:
         Uniform in the variable box, except that each link-angle variable (s, t or u) is
         put on one of its two bounds with probability :data:`EDGE_SHARE`: those bounds are
         the edges of the design space (eq 19), where the optima of Tables 1 and 2 sit
-        (METHODS.md §3) and which uniform draws never reach.
+        (docs/methods/spherical-parallel.md) and which uniform draws never reach.
         """
         x = rng.uniform(self.lower, self.upper, size=(count, len(self.names)))
         for column, name in enumerate(self.names):

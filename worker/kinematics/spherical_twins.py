@@ -1,4 +1,4 @@
-"""Designs that score exactly like a given one (METHODS.md §3, "Equivalences").
+"""Designs that score exactly like a given one (docs/methods/spherical-parallel.md, "Twins").
 
 Each twin reproduces every 1/kappa of the original on the samples shifted by ``shift``
 (rad, added to (psi1, psi2, psi3)); on the continuous workspace the shift changes

@@ -1,4 +1,4 @@
-"""Orientation samples of a prescribed SPM workspace (METHODS.md §3, "Default sampling").
+"""Orientation samples of a prescribed SPM workspace (docs/methods/spherical-parallel.md).
 
 The paper says only "4 x 12 x 3 = 144". Read literally: psi1 at ``azimuth`` evenly
 spaced azimuths from 0; psi2 at the mid-points of ``tilt`` equal-volume cells of
@@ -97,9 +97,10 @@ def boundary_grid(
     """A plain grid over the closed workspace, boundary included, for extreme values.
 
     psi1 over one 120° period [0, 2 pi / 3) (kappa has period 120° in psi1 for every
-    design, METHODS.md §3), psi2 = linspace(0, T, tilt), psi3 over a full turn (from the
-    torsion origin, ``torsion`` values) or linspace(lo, hi, torsion). Not equal-weight:
-    use it for minima, not means. Returns (azimuth * tilt * torsion, 3) rad.
+    design, docs/methods/spherical-parallel.md), psi2 = linspace(0, T, tilt), psi3 over a
+    full turn (from the torsion origin, ``torsion`` values) or linspace(lo, hi, torsion).
+    Not equal-weight: use it for minima, not means. Returns (azimuth * tilt * torsion, 3)
+    rad.
     """
     function = "boundary_grid"
     checked_workspace(ws, function)

@@ -2,7 +2,8 @@
 
 Step 1 of the synthesis algorithm (Patel & Sobh §4): d_min <= d <= d_max over the region
 of operation, fed to eqs (10)-(11). For the paper's cubic (eq 12) the exact range is
-10.3923 <= d <= 19.7673, not the printed 10 and 20 (METHODS.md §1 errata).
+10.3923 <= d <= 19.7673, not the printed 10 and 20 (docs/methods/planar-serial.md, "The paper's
+errata").
 """
 
 from __future__ import annotations

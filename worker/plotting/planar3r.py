@@ -6,7 +6,8 @@ it into PNG/SVG bytes.  Conventions shared by all figures:
 
 * grids: ``x`` (nx,), ``y`` (ny,) node coordinates, ``d_z`` (ny, nx); NaN marks an
   unreachable node and shows as the grey background;
-* one colour scale: viridis over d_z in [0, 1] (D = d_z / 3, METHODS.md §1, eqs 2-5);
+* one colour scale: viridis over d_z in [0, 1] (D = d_z / 3, eqs 2-5; see
+  docs/methods/planar-serial.md);
 * dashed circles: the paper's region boundaries d = l3, l1+l2-l3, l1+l2+l3 (its Fig 8);
   solid red circles: the edges of the exact full-dexterity bands for unlimited joints.
 

@@ -36,12 +36,25 @@ def run_square(inputs: SquareInputs, ctx: JobContext) -> JobOutcome:
     )
 
 
+def run_square_against_a_paper(inputs: SquareInputs, ctx: JobContext) -> JobOutcome:
+    return JobOutcome(
+        result={"square": inputs.x**2},
+        notes=("a note", "another note"),
+        errata=("the paper prints 10; it is 9",),
+    )
+
+
 def registry() -> ProcessRegistry:
     return ProcessRegistry((
         ProcessDefinition(
             id="square", title="Square", description="x squared", inputs_model=SquareInputs,
             run=run_square, examples=(), outputs={"square": "x**2"}, cost=lambda _: 1,
             cost_limit=10,
+        ),
+        ProcessDefinition(
+            id="paper-square", title="Square, against a paper", description="x squared",
+            inputs_model=SquareInputs, run=run_square_against_a_paper, examples=(),
+            outputs={"square": "x**2"}, cost=lambda _: 1, cost_limit=10,
         ),
     ))
 
@@ -68,8 +81,18 @@ def test_successful_job_stores_result_notes_and_artifacts(store: JobStore) -> No
     run_one(store)
     job = store.get_job(job_id)
     assert job is not None and job.status is JobStatus.SUCCESSFUL
-    assert store.get_result(job_id) == {"square": 9.0, "notes": ["a note"]}
+    assert store.get_result(job_id) == {"square": 9.0, "notes": ["a note"], "paper_errata": []}
     assert [a.name for a in job.artifacts] == ["square.csv"]
+
+
+def test_paper_errata_follow_the_notes_and_are_listed_apart(store: JobStore) -> None:
+    job_id = submit(store, "paper-square", {"x": 3})
+    run_one(store)
+    assert store.get_result(job_id) == {
+        "square": 9.0,
+        "notes": ["a note", "another note", "the paper prints 10; it is 9"],
+        "paper_errata": ["the paper prints 10; it is 9"],
+    }
 
 
 def test_raising_job_fails_with_reason(store: JobStore) -> None:

@@ -1,4 +1,4 @@
-"""Kinematic chains (METHODS.md §4 and §1): two job kinds.
+"""Kinematic chains (docs/methods/chains.md): two job kinds.
 
 ``chain-parallelism``: P, normalised P and Q of chains with the same number of links
 and degrees of freedom, ranked; every cyclic arrangement of a single loop ranked by Q.
@@ -51,7 +51,7 @@ CHAIN_PARALLELISM = ProcessDefinition(
     title="Kinematic chains: uniform rigidity (P) and parallelism (Q)",
     description=(
         "Compares planar kinematic chains with the same number of links and degrees of "
-        "freedom (METHODS.md §4). For each chain, in the order given: its mobility by "
+        "freedom (docs/methods/chains.md). For each chain, in the order given: its mobility by "
         "Grübler-Kutzbach, P = the product of its dimensions and P of the lengths "
         "normalised by their sum (eq 1; larger: more uniform rigidity), each loop's "
         "adjacent-side products and deviations eps_i = l_(i-1) l_i - l_i l_(i+1), and "

@@ -1,14 +1,15 @@
-"""The paper's worked examples as inputs ready to POST (METHODS.md §4 and §1).
+"""The paper's worked examples as inputs ready to POST (docs/methods/chains.md).
 
 Fig 2 (quadrangles with a sum of 60 cm), Fig 3 (30, 17, 18, 25) and Fig 4 (two
-seven-link chains) of ``papers/kinematic-chain-parallelism.txt``.  The text extraction
-has no figures, so the orderings come from METHODS.md: Fig 2d is (18, 15, 10, 17) and
+seven-link chains) of the parallelism paper (cited in docs/methods/chains.md).  The text
+extraction has no figures, so the orderings are inferred from its numbers
+(docs/methods/chains.md, "The paper's errata"): Fig 2d is (18, 15, 10, 17) and
 Fig 2e (18, 10, 17, 15); Fig 4's side lengths are fixed by its product tables.  Fig 2b
 and 2c are inferred: both have P = 20² x 10², and "2b is more parallel than 2c", so 2b
 is the parallelogram (20, 10, 20, 10) and 2c the kite (20, 20, 10, 10).
 
 The four-bar examples are the paper's quadrangles with a fixed link and Patel & Sobh's
-virtual four-bar (l1, l2, l3, d) of Example 1 (METHODS.md §1), grounded at d.
+virtual four-bar (l1, l2, l3, d) of Example 1 (docs/methods/planar-serial.md), grounded at d.
 """
 
 from __future__ import annotations

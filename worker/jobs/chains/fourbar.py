@@ -1,8 +1,8 @@
 """The ``fourbar-grashof`` job: Grashof type, Barker's class and fully turning link pairs.
 
 Grashof's criterion and Barker's classes come from :mod:`worker.kinematics.fourbar`
-(METHODS.md §1: in a Grashof chain the shortest link turns fully relative to every
-other).  The plot shows the chain's range of motion with the ground fixed and which
+(docs/methods/chains.md: in a Grashof chain the shortest link turns fully relative to
+every other).  The plot shows the chain's range of motion with the ground fixed and which
 links turn fully relative to which.
 """
 

@@ -29,7 +29,7 @@ class FourBarGrashofSpec(FrozenSpec):
     lengths: Annotated[tuple[Length, Length, Length, Length], BeforeValidator(_four_lengths)] = (
         Field(
             ...,
-            json_schema_extra=ratio_schema(),
+            json_schema_extra={**ratio_schema(), "x-unit": "length"},
             description="The four link lengths in order round the loop; link i is joined to "
             "links i-1 and i+1 (mod 4). Each must be shorter than the sum of the other three, "
             "or the loop cannot be assembled (or only lies flat and cannot move). Each in "

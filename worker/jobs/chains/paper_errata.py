@@ -1,7 +1,7 @@
 """Notes on the parallelism paper's misprints, for chains that are recognisably its figures.
 
-METHODS.md §4 lists what re-computation found wrong; a note is added only when a chain
-is one of the paper's (the same loop up to rotation and reflection; for the
+docs/methods/chains.md lists what re-computation found wrong; a note is added only when a
+chain is one of the paper's (the same loop up to rotation and reflection; for the
 order-free normalised P, the same lengths in any order) and says both the printed and
 the correct value.  The paper's conclusions are checked when both chains compared are
 present.
@@ -159,41 +159,46 @@ def _conclusion(
     ]
 
 
-def parallelism_errata_notes(entries: list[Entry]) -> list[str]:
-    """Notes for the chains that are the paper's figures (METHODS.md §4 errata)."""
-    notes: list[str] = []
+def parallelism_errata_notes(entries: list[Entry]) -> tuple[list[str], list[str]]:
+    """Notes for the chains that are the paper's figures (docs/methods/chains.md), as
+    ``(errata, confirmations)``: the paper's misprints and the conclusions that do not
+    hold, then the conclusions that do (plain notes, not errata)."""
+    errata: list[str] = []
     for entry in entries:
         for recognise, note in _RECOGNISERS:
             if recognise(entry):
-                notes += [text for text in note(entry) if text not in notes]
-    notes += _conclusion(
-        entries,
-        lambda e: _is_loop(e, FIG_2["Fig 2e"]),
-        lambda e: _is_loop(e, FIG_2["Fig 2d"]),
-        "Q",
-        "Fig 2e is more parallel than Fig 2d",
-    )
-    notes += _conclusion(
-        entries,
-        lambda e: _is_loop(e, FIG_2["Fig 2b"]),
-        lambda e: _is_loop(e, FIG_2["Fig 2c"]),
-        "Q",
-        "Fig 2b is more parallel than Fig 2c",
-        remark=" (2b taken as the parallelogram, 2c as the kite)",
-    )
-    notes += _conclusion(
-        entries,
-        lambda e: _entry_key(e) == _figure_4_key(FIG_4B),
-        lambda e: _entry_key(e) == _figure_4_key(FIG_4A),
-        "Q",
-        "Fig 4b is more parallel than Fig 4a",
-    )
-    notes += _conclusion(
-        entries,
-        lambda e: _is_loop(e, FIG_2["Fig 2d"]),
-        lambda e: _is_loop(e, FIG_3),
-        "P_normalized",
-        "Fig 2d's links are more uniformly rigid than Fig 3's",
-        larger_is_better=True,
-    )
-    return notes
+                errata += [text for text in note(entry) if text not in errata]
+    conclusions = [
+        *_conclusion(
+            entries,
+            lambda e: _is_loop(e, FIG_2["Fig 2e"]),
+            lambda e: _is_loop(e, FIG_2["Fig 2d"]),
+            "Q",
+            "Fig 2e is more parallel than Fig 2d",
+        ),
+        *_conclusion(
+            entries,
+            lambda e: _is_loop(e, FIG_2["Fig 2b"]),
+            lambda e: _is_loop(e, FIG_2["Fig 2c"]),
+            "Q",
+            "Fig 2b is more parallel than Fig 2c",
+            remark=" (2b taken as the parallelogram, 2c as the kite)",
+        ),
+        *_conclusion(
+            entries,
+            lambda e: _entry_key(e) == _figure_4_key(FIG_4B),
+            lambda e: _entry_key(e) == _figure_4_key(FIG_4A),
+            "Q",
+            "Fig 4b is more parallel than Fig 4a",
+        ),
+        *_conclusion(
+            entries,
+            lambda e: _is_loop(e, FIG_2["Fig 2d"]),
+            lambda e: _is_loop(e, FIG_3),
+            "P_normalized",
+            "Fig 2d's links are more uniformly rigid than Fig 3's",
+            larger_is_better=True,
+        ),
+    ]
+    errata += [text for text in conclusions if "does NOT hold" in text]
+    return errata, [text for text in conclusions if "does NOT hold" not in text]

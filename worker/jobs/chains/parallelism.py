@@ -2,7 +2,7 @@
 
 For every chain, in the order given: its mobility (Grübler-Kutzbach), its dimensions,
 P and normalised P (eq 1), each loop's adjacent-side products and deviations and Q
-(eq 3, METHODS.md §4); for a single loop, every distinct cyclic arrangement of its
+(eq 3, docs/methods/chains.md); for a single loop, every distinct cyclic arrangement of its
 lengths ranked by Q.  Then the chains ranked by normalised P (uniform rigidity) and by
 Q (parallelism) with the paper's reading of each.  The paper's misprints are noted
 when a chain is recognisably one of its figures (:mod:`worker.jobs.chains.paper_errata`).
@@ -63,12 +63,12 @@ def run_chain_parallelism(spec: ChainParallelismSpec, ctx: JobContext) -> JobOut
         },
         "length_unit": spec.length_unit,
     }
-    notes = _general_notes(entries, ranking)
-    notes += parallelism_errata_notes(entries)
+    errata, confirmations = parallelism_errata_notes(entries)
+    notes = _general_notes(entries, ranking) + confirmations
     ctx.report_progress(50.0, "plots")
     artifacts = _artifacts(spec, entries, structures, ranking) if spec.plots else ()
     ctx.report_progress(100.0, "done")
-    return JobOutcome(result=result, artifacts=artifacts, notes=tuple(notes))
+    return JobOutcome(result=result, artifacts=artifacts, notes=tuple(notes), errata=tuple(errata))
 
 
 def _floats(values: Any) -> list[float]:

@@ -1,4 +1,4 @@
-"""Validated inputs of the kinematic-chain jobs (METHODS.md §4 and §1).
+"""Validated inputs of the kinematic-chain jobs (docs/methods/chains.md).
 
 Every model is frozen with ``extra="forbid"`` and rejects NaN and infinity; the field
 descriptions become the public JSON schema served at ``GET /v1/processes/{id}``.
@@ -18,6 +18,7 @@ from pydantic import (
     BeforeValidator,
     Discriminator,
     Field,
+    JsonValue,
     StringConstraints,
     Tag,
     ValidationError,
@@ -82,6 +83,10 @@ def _counted(what: str, low: int, high: int) -> Any:
     return BeforeValidator(check)
 
 
+#: The unit of a length input, for the pages: the job's ``length_unit``.
+LENGTH_UNIT: dict[str, JsonValue] = {"x-unit": "length"}
+
+
 def _bounds(low: int, high: int) -> dict[str, Any]:
     return {"minItems": low, "maxItems": high}
 
@@ -92,7 +97,7 @@ class LoopChain(FrozenSpec):
     name: ChainName = Field(..., description="Name of the chain (unique among the chains).")
     lengths: Annotated[tuple[Length, ...], _counted("lengths", 3, MAX_SINGLE_LOOP_LINKS)] = Field(
         ...,
-        json_schema_extra={**_bounds(3, MAX_SINGLE_LOOP_LINKS), **ratio_schema()},
+        json_schema_extra={**_bounds(3, MAX_SINGLE_LOOP_LINKS), **ratio_schema(), **LENGTH_UNIT},
         description=f"Link lengths in order round the loop (3..{MAX_SINGLE_LOOP_LINKS}); the "
         "links are named '1', '2', ... in this order. Each in [1e-6, 1e6], the longest at "
         "most 1e6 times the shortest.",
@@ -142,7 +147,7 @@ class MultiLoopChain(FrozenSpec):
         ...,
         min_length=3,
         max_length=MAX_LINKS,
-        json_schema_extra=ratio_schema(),
+        json_schema_extra={**ratio_schema(), **LENGTH_UNIT},
         description="Each link's length (a binary link) or {'sides': {...}} (a polygonal "
         "link), by link name (letters, digits, '_' or '-'). Every length and side in "
         "[1e-6, 1e6], the longest of the chain at most 1e6 times the shortest.",

@@ -1,4 +1,6 @@
-"""2-DOF planar parallel robots (Huang et al. 2004; METHODS.md §2): two job kinds.
+"""2-DOF planar parallel robots (Huang et al. 2004): two job kinds.
+
+The method, its conventions and the paper's errata: docs/methods/planar-parallel.md.
 
 ``planar2dof-conditioning-map``: 1/kappa, the pressure angles and beta_min over a grid
 for one robot of Fig. 1 in one working mode, with W_kappa0 and given points.

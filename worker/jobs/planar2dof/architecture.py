@@ -3,7 +3,7 @@
 :func:`architecture_from_spec` turns the validated inputs into a kinematic
 :class:`~worker.kinematics.planar_parallel.Architecture` (e by eq 12 for
 ``"architecture": "isotropic"``); :func:`map_grid` gives the requested grid or one that
-holds the whole reachable workspace of the type (METHODS.md §2, Fig. 1).
+holds the whole reachable workspace of the type (docs/methods/planar-parallel.md, Fig. 1).
 """
 
 from __future__ import annotations

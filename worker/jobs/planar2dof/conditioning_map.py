@@ -1,5 +1,5 @@
 """The ``planar2dof-conditioning-map`` job: 1/kappa and pressure angles over a grid
-(Huang et al. 2004, eqs 2, 7, 15; Figs 4-5; METHODS.md §2).
+(Huang et al. 2004, eqs 2, 7, 15; Figs 4-5; docs/methods/planar-parallel.md).
 
 For one robot of Fig. 1 in one working mode: reachability, 1/kappa, both pressure angles
 and beta_min at every grid node; W_kappa0's boundary and area when a limit is given; the
@@ -70,7 +70,7 @@ def run_conditioning_map(spec: ConditioningMapSpec, ctx: JobContext) -> JobOutco
 
     result = _result(spec, arch, grid, cmap, region, isotropic, entries)
     notes = _notes(spec, arch, cmap, region, isotropic, entries)
-    notes += conditioning_map_errata_notes(spec)
+    errata = conditioning_map_errata_notes(spec)
 
     artifacts: tuple[Artifact, ...] = ()
     if spec.plots:
@@ -78,7 +78,7 @@ def run_conditioning_map(spec: ConditioningMapSpec, ctx: JobContext) -> JobOutco
     progress.report(70.0, "data files")
     artifacts += _data(spec, arch, grid, cmap, region, progress)
     progress.report(100.0, "done")
-    return JobOutcome(result=result, artifacts=artifacts, notes=tuple(notes))
+    return JobOutcome(result=result, artifacts=artifacts, notes=tuple(notes), errata=tuple(errata))
 
 
 def _grid_map(

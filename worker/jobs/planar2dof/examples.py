@@ -1,8 +1,8 @@
 """The paper's worked examples (Huang et al. 2004, §IV, Figs 4-9, Table I), ready to POST.
 
 The numbers are the paper's, exactly as printed; what re-computation found wrong with
-them is listed in METHODS.md §2 and reported in the jobs' ``notes``
-(:mod:`worker.jobs.planar2dof.paper_errata`).
+them is listed in docs/methods/planar-parallel.md and reported in the jobs' ``notes``
+and ``paper_errata`` (:mod:`worker.jobs.planar2dof.paper_errata`).
 """
 
 from __future__ import annotations

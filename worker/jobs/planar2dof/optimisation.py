@@ -1,5 +1,5 @@
 """The ``planar2dof-optimisation`` job: the paper's global design of the proximal-arm robot
-(Huang et al. 2004 §III-C, Figs 6-9, Table I; METHODS.md §2).
+(Huang et al. 2004 §III-C, Figs 6-9, Table I; docs/methods/planar-parallel.md).
 
 The conditioning limit 1/kappa0 from an allowable pressure angle (eq 17 + eq 7, maximised
 over delta) or as given; then, for each delta of a sweep (or one delta), the isotropic
@@ -83,10 +83,10 @@ def run_optimisation(spec: OptimisationSpec, ctx: JobContext) -> JobOutcome:
     progress.report(82.0, "result")
     result = _result(spec, limit, outcome)
     notes = _notes(spec, outcome)
-    notes += optimisation_errata_notes(spec, result, outcome.rows)
+    errata = optimisation_errata_notes(spec, result, outcome.rows)
     artifacts = optimisation_artifacts(spec, limit.value, limit.delta, outcome, progress)
     progress.report(100.0, "done")
-    return JobOutcome(result=result, artifacts=artifacts, notes=tuple(notes))
+    return JobOutcome(result=result, artifacts=artifacts, notes=tuple(notes), errata=tuple(errata))
 
 
 def conditioning_limit(spec: OptimisationSpec) -> ConditioningLimit:

@@ -1,4 +1,5 @@
-"""Validated inputs of ``planar2dof-optimisation`` (Huang et al. 2004 §III-C; METHODS.md §2).
+"""Validated inputs of ``planar2dof-optimisation`` (Huang et al. 2004 §III-C; see
+docs/methods/planar-parallel.md).
 
 The proximal-arm robot normalised to l1 = 1, so every input is a ratio or an angle: delta
 = l2/l1 in [1, 10], lambda = b/h in [1/100, 100], [beta] in degrees, 1/kappa0. Frozen,
@@ -125,7 +126,8 @@ class OptimisationSpec(FrozenSpec):
         ge=2,
         le=MAX_MEAN_MESH,
         description="Nodes per side of the M x N = mean_mesh² mesh of W_lambda over which the "
-        f"mean 1/kappa (eq 14) is taken (2..{MAX_MEAN_MESH}; default 101, as METHODS.md).",
+        f"mean 1/kappa (eq 14) is taken (2..{MAX_MEAN_MESH}; default 101: the mean depends on "
+        "the mesh, see docs/methods/planar-parallel.md).",
     )
     plots: bool = Field(True, description=PLOTS_DESCRIPTION)
 

@@ -1,8 +1,8 @@
 """Notes on the paper's printed errors, for requests that are recognisably its examples.
 
-METHODS.md §2 lists what re-computation found wrong in Huang et al.'s Table I and text.
-Each note gives the paper's printed value next to the value this job computed, so the
-difference is visible in every result that reproduces the paper.
+docs/methods/planar-parallel.md lists what re-computation found wrong in Huang et al.'s
+Table I and text.  Each note gives the paper's printed value next to the value this job
+computed, so the difference is visible in every result that reproduces the paper.
 """
 
 from __future__ import annotations
@@ -29,7 +29,7 @@ __all__ = [
 
 #: Mesh (nodes a side) on which the paper's printed rectangles are checked.
 CHECK_MESH = 401
-#: METHODS.md: [beta] that would give the paper's 0.581.
+#: docs/methods/planar-parallel.md: [beta] that would give the paper's 0.581.
 BETA_FOR_0581 = "35.3-35.4°"
 #: §IV on Fig. 8: the mean 1/kappa over delta in [1, 2.5] "varies between" these, per [beta].
 PAPER_MEAN_RANGES = {30.0: (0.74, 0.80), 35.0: (0.77, 0.83)}
@@ -179,15 +179,16 @@ def _mean_range_note(
     if (abs(low.mean_inverse_condition - paper_low) > PAPER_MEAN_ROUNDING
             or abs(high.mean_inverse_condition - paper_high) > PAPER_MEAN_ROUNDING):  # fmt: skip
         note += (", beyond the paper's two-decimal rounding (the mean grows with the mesh, "
-                 "METHODS.md §2)")  # fmt: skip
+                 "docs/methods/planar-parallel.md)")  # fmt: skip
     return note + "."
 
 
 def optimisation_errata_notes(
     spec: OptimisationSpec, result: dict[str, Any], rows: tuple[pp.SweepRow, ...]
 ) -> list[str]:
-    """The paper's Table I errata that concern this request (METHODS.md §2), and its §IV
-    statements on Fig. 8 (the optimum, the range of the mean) next to this sweep's, as notes.
+    """The paper's Table I errata that concern this request (docs/methods/planar-parallel.md),
+    and its §IV statements on Fig. 8 (the optimum, the range of the mean) next to this
+    sweep's, as notes.
 
     Requests starting from [beta] (a Table I column's angle, lambda = 4) and sweeps or the
     printed delta at a printed limit get them; other requests none."""

@@ -1,4 +1,4 @@
-"""Validated inputs of the planar2dof jobs (Huang et al. 2004; METHODS.md §2).
+"""Validated inputs of the planar2dof jobs (Huang et al. 2004; docs/methods/planar-parallel.md).
 
 Every model is frozen with ``extra="forbid"`` and rejects NaN and infinity; the field
 descriptions become the public JSON schema served at ``GET /v1/processes/{id}``.
@@ -19,7 +19,7 @@ from __future__ import annotations
 import math
 from typing import Annotated, Any, Literal
 
-from pydantic import BeforeValidator, Field, field_validator, model_validator
+from pydantic import BeforeValidator, Field, JsonValue, field_validator, model_validator
 
 from worker.jobs.numeric_ranges import (
     MAX_LENGTH,
@@ -87,6 +87,12 @@ def _signs(value: Any) -> Any:
     return value
 
 
+#: The unit of a length or position input, for the pages: the job's ``length_unit``.
+LENGTH_UNIT: dict[str, JsonValue] = {"x-unit": "length"}
+#: Lengths that also keep within a ratio of each other (worker.jobs.numeric_ranges).
+_LENGTH_FIELD: dict[str, JsonValue] = {**ratio_schema(), **LENGTH_UNIT}
+
+
 class GridSpec(GridSpecBase):
     """The evaluation grid: ``points_per_axis`` nodes on each axis, ends included."""
 
@@ -100,7 +106,7 @@ class GridSpec(GridSpecBase):
             "|y| <= l1 + l2 (proximal arms); |x|, |y| <= 3e (telescopic legs); |x| <= 2 l2, "
             "|y| <= l2 (linear drives)."
         ),
-        json_schema_extra=ratio_schema(),
+        json_schema_extra=_LENGTH_FIELD,
     )
 
     @model_validator(mode="after")
@@ -176,12 +182,12 @@ class ConditioningMapSpec(FrozenSpec):
     """Inputs of ``planar2dof-conditioning-map``: 1/kappa and pressure angles on a grid."""
 
     actuation: Actuation = Field("proximal-arm", description=_ACTUATION_DESCRIPTION)
-    l1: PositiveLength = Field(1.0, description=_L1_DESCRIPTION, json_schema_extra=ratio_schema())
+    l1: PositiveLength = Field(1.0, description=_L1_DESCRIPTION, json_schema_extra=_LENGTH_FIELD)
     l2: PositiveLength | None = Field(
-        None, description=_L2_DESCRIPTION, json_schema_extra=ratio_schema()
+        None, description=_L2_DESCRIPTION, json_schema_extra=_LENGTH_FIELD
     )
     e: float | None = Field(
-        None, ge=0, le=MAX_LENGTH, description=_E_DESCRIPTION, json_schema_extra=ratio_schema()
+        None, ge=0, le=MAX_LENGTH, description=_E_DESCRIPTION, json_schema_extra=_LENGTH_FIELD
     )
     architecture: Literal["isotropic"] | None = Field(None, description=_ARCHITECTURE_DESCRIPTION)
     working_mode: Annotated[WorkingMode, BeforeValidator(_signs)] = Field(
@@ -192,7 +198,11 @@ class ConditioningMapSpec(FrozenSpec):
         None, ge=MIN_INVERSE_CONDITION_LIMIT, lt=1, description=_LIMIT_MAP_DESCRIPTION
     )
     points: tuple[Point, ...] | None = Field(
-        None, min_length=1, max_length=MAX_POINTS, description=_POINTS_DESCRIPTION
+        None,
+        min_length=1,
+        max_length=MAX_POINTS,
+        description=_POINTS_DESCRIPTION,
+        json_schema_extra=LENGTH_UNIT,
     )
     length_unit: str = Field(
         "units", min_length=1, max_length=16, pattern=r"^[\w .°/-]+$", description=_UNIT_DESCRIPTION

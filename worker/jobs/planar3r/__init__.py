@@ -1,4 +1,6 @@
-"""Three-link planar serial arms (Patel & Sobh; METHODS.md §1): two job kinds.
+"""Three-link planar serial arms (Patel & Sobh): two job kinds.
+
+The method, its conventions and the paper's errata: docs/methods/planar-serial.md.
 
 ``planar3r-dexterity-map``: d_z and D = d_z/3 over a grid for given links, with the
 paper's regions, the exact full-dexterity bands, task points and a trajectory.
@@ -50,9 +52,9 @@ DEXTERITY_MAP = ProcessDefinition(
     description=(
         "Orientation dexterity d_z (0..1) and dexterity index D = d_z/3 (Patel & Sobh "
         "eqs 2-5) at every node of a grid, for links [l1, l2, l3] from the base. Fully "
-        "revolute joints: the exact closed form (METHODS.md §1). With joint limits: "
-        "orientations sampled every orientation_step_deg, inverse kinematics over both "
-        "elbow branches, task points refined by bisection. Reports the paper's four "
+        "revolute joints: the exact closed form (docs/methods/planar-serial.md). With "
+        "joint limits: orientations sampled every orientation_step_deg, inverse kinematics "
+        "over both elbow branches, task points refined by bisection. Reports the paper's four "
         "regions next to the exact bands of full dexterity, reachable and fully dexterous "
         "areas, d_z at task points and along a trajectory (eq 4 mean), CSV/NPZ data and "
         "heat-map, 3-D surface and radial-section plots. "
@@ -97,10 +99,11 @@ SYNTHESIS = ProcessDefinition(
         "points or trajectory from the base (optionally rounded outward, as the paper "
         "does), l1 = (d_max + l3)/2 + 1 and l2 = (d_max + l3)/2 (eqs 10-11), Grashof's "
         "criterion at d_min and d_max, the paper's claimed conditions next to the real "
-        "condition for full dexterity (METHODS.md §1), and d_z at the task points and "
-        "along the trajectory in the paper's cases: 1 ideal, 2 with l2 and l3 swapped, "
-        "3 under joint limits (if given). Notes flag task points short of full dexterity "
-        "and the paper's errata when the inputs are its examples. "
+        "condition for full dexterity (docs/methods/planar-serial.md), and d_z at the task "
+        "points and along the trajectory in the paper's cases: 1 ideal, 2 with l2 and l3 "
+        "swapped, 3 under joint limits (if given). Notes flag task points short of full "
+        "dexterity and, listed again under paper_errata, the paper's errata when the inputs "
+        "are its examples. "
         + _LIMITS_TEXT.format(
             unit="grid points x (2 + orientation samples of Case 3 if joint limits are given)"
         )

@@ -1,8 +1,8 @@
 """Checks of a synthesised design: Grashof, the paper's claims, the real condition.
 
 The paper (§4) claims eqs (10)-(11) give l1 > l2 > d > l3 and l1 + l3 > l2 + d at both
-d_min and d_max; METHODS.md §1 shows the ordering fails in both examples and that full
-dexterity over [d_min, d_max] needs the range inside the band
+d_min and d_max; docs/methods/planar-serial.md shows the ordering fails in both examples
+and that full dexterity over [d_min, d_max] needs the range inside the band
 [l3 + |l1 - l2|, l1 + l2 - l3], i.e. l3 + 1 <= d_min for this design.
 """
 
@@ -67,8 +67,9 @@ def paper_conditions(links: Links, d_min: float, d_max: float) -> dict[str, dict
 def full_dexterity_condition(links: Links, d_min: float, d_max: float) -> dict[str, Any]:
     """Whether every distance in [d_min, d_max] is fully dexterous (unlimited joints).
 
-    ``band`` is [l3 + |l1 - l2|, l1 + l2 - l3] (METHODS.md §1); ``d_range_fully_dexterous``
-    also accepts a range inside the central disk [0, min(l3 - |l1-l2|, l1 + l2 - l3)].
+    ``band`` is [l3 + |l1 - l2|, l1 + l2 - l3] (docs/methods/planar-serial.md);
+    ``d_range_fully_dexterous`` also accepts a range inside the central disk
+    [0, min(l3 - |l1-l2|, l1 + l2 - l3)].
     """
     l1, l2, l3 = links
     bands = planar_serial.full_dexterity_bands(links)

@@ -1,9 +1,9 @@
 """d_z on grids and at points: exact for revolute joints, sampled under joint limits.
 
-With fully revolute joints d_z has a closed form (METHODS.md §1); under joint limits it
-is counted over sampled orientations, inverse kinematics over both elbow branches.  The
-grid is evaluated by plain sampling, task points and trajectory samples with their
-transitions refined by bisection to :data:`REFINE_TOL_RAD`.
+With fully revolute joints d_z has a closed form (docs/methods/planar-serial.md); under
+joint limits it is counted over sampled orientations, inverse kinematics over both elbow
+branches.  The grid is evaluated by plain sampling, task points and trajectory samples
+with their transitions refined by bisection to :data:`REFINE_TOL_RAD`.
 """
 
 from __future__ import annotations

@@ -1,9 +1,9 @@
 """The ``planar3r-dexterity-map`` job: d_z and D = d_z/3 over a grid (Patel & Sobh §2, §5).
 
 Exact closed form with fully revolute joints; orientation sampling (both elbow
-branches) under joint limits (METHODS.md §1).  Reports the paper's regions next to the
-exact full-dexterity bands, areas, the task points and a trajectory, with CSV/NPZ data
-and three plots (heat map, 3-D surface, radial section).
+branches) under joint limits (docs/methods/planar-serial.md).  Reports the paper's regions
+next to the exact full-dexterity bands, areas, the task points and a trajectory, with
+CSV/NPZ data and three plots (heat map, 3-D surface, radial section).
 """
 
 from __future__ import annotations
@@ -82,7 +82,7 @@ def run_dexterity_map(spec: DexterityMapSpec, ctx: JobContext) -> JobOutcome:
 
     result = _result(spec, grid, sampling, d_z, task_entries, trajectory)
     notes = _notes(spec, sampling, task_entries, trajectory)
-    notes += dexterity_map_errata_notes(spec, result)
+    errata = dexterity_map_errata_notes(spec, result)
 
     artifacts: tuple[Artifact, ...] = ()
     if spec.plots:
@@ -94,7 +94,7 @@ def run_dexterity_map(spec: DexterityMapSpec, ctx: JobContext) -> JobOutcome:
     progress.report(97.0, "data files")
     artifacts += _data(spec, grid, d_z, region)
     progress.report(100.0, "done")
-    return JobOutcome(result=result, artifacts=artifacts, notes=tuple(notes))
+    return JobOutcome(result=result, artifacts=artifacts, notes=tuple(notes), errata=tuple(errata))
 
 
 def _radial_reach(links: Links) -> float:

@@ -1,7 +1,8 @@
 """The paper's worked examples (Patel & Sobh §5), as inputs ready to POST.
 
 The numbers are the paper's, exactly as printed; what the paper then gets wrong about
-them is listed in METHODS.md §1 and reported in the jobs' ``notes``.
+them is listed in docs/methods/planar-serial.md and reported in the jobs' ``notes`` and
+``paper_errata``.
 """
 
 from __future__ import annotations

@@ -1,9 +1,10 @@
 """Notes on the paper's printed errors, for requests that are recognisably its examples.
 
-METHODS.md §1 lists what re-computation found wrong in Patel & Sobh's Examples 1 and 2.
-Those corrections are only worth a note when the request is the paper's example (the
-same cubic, or the same seven task points); general corrections (Region 2, the claimed
-orderings) are noted for every design by :mod:`worker.jobs.planar3r.design_checks`.
+docs/methods/planar-serial.md lists what re-computation found wrong in Patel & Sobh's
+Examples 1 and 2.  Those corrections are only worth a note when the request is the
+paper's example (the same cubic, or the same seven task points); the jobs return them as
+``JobOutcome.errata`` (the result's ``paper_errata``).  General corrections (Region 2,
+the claimed orderings) are noted for every design by :mod:`worker.jobs.planar3r.design_checks`.
 """
 
 from __future__ import annotations
@@ -58,7 +59,7 @@ def is_example_2(spec: SynthesisSpec) -> bool:
 
 
 def synthesis_errata_notes(spec: SynthesisSpec, result: dict[str, Any]) -> list[str]:
-    """The paper's errata that concern this synthesis request (METHODS.md §1), as notes."""
+    """The paper's errata that concern this synthesis request, as notes."""
     if is_example_1(spec):
         return _example_1_notes(spec, result)
     if is_example_2(spec):

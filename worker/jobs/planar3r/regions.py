@@ -1,9 +1,10 @@
 """The paper's four regions (§5, eq 13) next to what the exact d_z says about them.
 
 Patel & Sobh split the workspace by the distance d from the base at l3, l1 + l2 - l3 and
-l1 + l2 + l3 and describe each piece; METHODS.md §1 corrects the descriptions (Region 1
-can be fully dexterous, Region 2 is not entirely so).  Both are reported, with the exact
-full-dexterity bands and the range of d_z along a ray (unlimited joints).
+l1 + l2 + l3 and describe each piece; docs/methods/planar-serial.md corrects the
+descriptions (Region 1 can be fully dexterous, Region 2 is not entirely so).  Both are
+reported, with the exact full-dexterity bands and the range of d_z along a ray
+(unlimited joints).
 """
 
 from __future__ import annotations
@@ -146,7 +147,7 @@ def region_2_note(links: Links) -> str:
     note = (
         f"The paper's Region 2 (l3 < d <= l1 + l2 - l3 = {l1 + l2 - l3:.6g}, eq 13) is not the "
         f"fully dexterous set: for ({l1:.6g}, {l2:.6g}, {l3:.6g}) with unlimited joints d_z = 1 "
-        f"exactly for d in {describe_bands(bands)} (METHODS.md §1)"
+        f"exactly for d in {describe_bands(bands)} (docs/methods/planar-serial.md)"
     )
     inner = [r for r in region_table(links)[:2] if r["d_z_min"] is not None]
     dip = min(inner, key=lambda r: float(r["d_z_min"]))

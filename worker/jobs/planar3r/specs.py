@@ -1,4 +1,4 @@
-"""Validated inputs of the planar3r jobs (Patel & Sobh; METHODS.md §1).
+"""Validated inputs of the planar3r jobs (Patel & Sobh; docs/methods/planar-serial.md).
 
 Every model is frozen with ``extra="forbid"`` and rejects NaN and infinity; the field
 descriptions become the public JSON schema served at ``GET /v1/processes/{id}``.
@@ -16,6 +16,7 @@ from pydantic import (
     BeforeValidator,
     Discriminator,
     Field,
+    JsonValue,
     Tag,
     field_validator,
     model_validator,
@@ -56,6 +57,9 @@ MAX_POLYNOMIAL_COEFFICIENTS = 10
 Point = tuple[Coordinate, Coordinate]
 #: A link length in [1e-6, 1e6] (worker.jobs.numeric_ranges).
 Length = PositiveLength
+
+#: The unit of a length or position input, for the pages: the job's ``length_unit``.
+LENGTH_UNIT: dict[str, JsonValue] = {"x-unit": "length"}
 #: A polynomial coefficient (the trajectory's y must stay within the coordinate range).
 Coefficient = Annotated[float, Field(ge=-MAX_COORDINATE, le=MAX_COORDINATE)]
 JointLimitsDeg = tuple[tuple[float, float], tuple[float, float], tuple[float, float]]
@@ -84,6 +88,7 @@ class GridSpec(GridSpecBase):
             "least 1e-6 long. Default: the square ±1.05·(l1 + l2 + l3) around the base, "
             "which holds the whole reachable disk."
         ),
+        json_schema_extra=LENGTH_UNIT,
     )
 
     @model_validator(mode="after")
@@ -106,6 +111,7 @@ class PolylineTrajectory(FrozenSpec):
         min_length=2,
         max_length=MAX_POLYLINE_VERTICES,
         description="Vertices [[x, y], ...] of the polyline (at least 2), in order.",
+        json_schema_extra=LENGTH_UNIT,
     )
     samples: int = Field(
         200,
@@ -133,8 +139,14 @@ class PolynomialTrajectory(FrozenSpec):
         description="Coefficients [a_n, ..., a_1, a_0] of y(x), highest power first "
         f"(1..{MAX_POLYNOMIAL_COEFFICIENTS} of them).",
     )
-    x_start: Coordinate = Field(..., description="x at the start of the trajectory.")
-    x_end: Coordinate = Field(..., description="x at the end of the trajectory (≠ x_start).")
+    x_start: Coordinate = Field(
+        ..., description="x at the start of the trajectory.", json_schema_extra=LENGTH_UNIT
+    )
+    x_end: Coordinate = Field(
+        ...,
+        description="x at the end of the trajectory (≠ x_start).",
+        json_schema_extra=LENGTH_UNIT,
+    )
     samples: int = Field(
         200,
         ge=2,
@@ -245,7 +257,11 @@ class _TaskSpec(FrozenSpec):
     )
     grid: GridSpec = Field(default_factory=GridSpec, description="The evaluation grid.")
     task_points: tuple[Point, ...] | None = Field(
-        None, min_length=1, max_length=MAX_TASK_POINTS, description=_TASK_POINTS_DESCRIPTION
+        None,
+        min_length=1,
+        max_length=MAX_TASK_POINTS,
+        description=_TASK_POINTS_DESCRIPTION,
+        json_schema_extra=LENGTH_UNIT,
     )
     task_labels: tuple[Annotated[str, Field(min_length=1, max_length=32)], ...] | None = Field(
         None, description=_LABELS_DESCRIPTION
@@ -288,7 +304,9 @@ class _ArmSpec(FrozenSpec):
     links: Annotated[
         tuple[Length, Length, Length],
         _three_entries("links needs three lengths [l1, l2, l3]"),
-    ] = Field(..., description=_LINKS_DESCRIPTION, json_schema_extra=ratio_schema())
+    ] = Field(
+        ..., description=_LINKS_DESCRIPTION, json_schema_extra={**ratio_schema(), **LENGTH_UNIT}
+    )
 
     @field_validator("links")
     @classmethod
@@ -305,6 +323,7 @@ class _DesignSpec(FrozenSpec):
         description="Length of the last link, in [1e-6, 1e6] (the paper chooses "
         "l3 < d_min; full dexterity over the task needs l3 + |l1 - l2| <= d_min, i.e. "
         "l3 <= d_min - 1).",
+        json_schema_extra=LENGTH_UNIT,
     )
     round_distances: bool = Field(
         False,

@@ -3,8 +3,9 @@
 From the task points or a trajectory: the exact distance range [d_min, d_max] from the
 base, the design l1 = (d_max + l3)/2 + 1, l2 = (d_max + l3)/2, Grashof's criterion at
 both ends of the range, and the design's d_z in the paper's three cases (Patel & Sobh
-§5): 1 ideal, 2 with l2 and l3 swapped, 3 under joint limits.  METHODS.md §1 holds the
-corrections this job reports in ``notes``.
+§5): 1 ideal, 2 with l2 and l3 swapped, 3 under joint limits.
+docs/methods/planar-serial.md holds the corrections this job reports in ``notes`` (those
+on the paper's examples also in ``paper_errata``).
 """
 
 from __future__ import annotations
@@ -129,12 +130,12 @@ def run_synthesis(spec: SynthesisSpec, ctx: JobContext) -> JobOutcome:
     }
     notes = design_notes(spec, links, distances, d_min_used, d_max_used)
     notes += _case_notes(spec, distances, cases)
-    notes += synthesis_errata_notes(spec, result)
+    errata = synthesis_errata_notes(spec, result)
 
     progress.report(90.0, "plots")
     artifacts = _artifacts(spec, grid, cases)
     progress.report(100.0, "done")
-    return JobOutcome(result=result, artifacts=artifacts, notes=tuple(notes))
+    return JobOutcome(result=result, artifacts=artifacts, notes=tuple(notes), errata=tuple(errata))
 
 
 def _distance_range(spec: SynthesisSpec) -> DistanceRange:

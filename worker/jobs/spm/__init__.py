@@ -1,4 +1,6 @@
-"""Spherical parallel manipulators (Bai 2010; METHODS.md §3): three job kinds.
+"""Spherical parallel manipulators (Bai 2010): three job kinds.
+
+The method, its conventions and the paper's errata: docs/methods/spherical-parallel.md.
 
 ``spm-conditioning-map``: one design's inverse kinematics and 1/kappa over a prescribed
 workspace, with C_n (eq 25), mean(1/kappa^2) (eq 28), GCI (eq 24), the type-II measure
@@ -68,8 +70,8 @@ def _limits(limit: int, time_s: float, sync: int, detail: str) -> str:
 
 _SAMPLING = (
     "The workspace is a cone of opening 2T with a torsion range, sampled by default as "
-    "METHODS.md §3 reads the paper's 4 x 12 x 3 = 144 orientations (equal-volume tilt "
-    "cells), denser on request; every result reports the sampling used."
+    "docs/methods/spherical-parallel.md reads the paper's 4 x 12 x 3 = 144 orientations "
+    "(equal-volume tilt cells), denser on request; every result reports the sampling used."
 )
 _INDICES = (
     "rms_inverse_condition is C_n of eq 25 (quadratic mean of 1/kappa), "

@@ -1,5 +1,5 @@
 """The ``spm-conditioning-map`` job: one design's conditioning over a prescribed workspace
-(Bai 2010 §3, §5.1, Figs 6-7; METHODS.md §3).
+(Bai 2010 §3, §5.1, Figs 6-7; docs/methods/spherical-parallel.md).
 
 Inverse kinematics on one branch (eqs 11-12, 29) at every sample, 1/kappa with the
 weighted norm of eqs 21-22, C_n (eq 25), mean(1/kappa^2) (eq 28), GCI (eq 24), the
@@ -102,12 +102,12 @@ def run_conditioning_map(spec: ConditioningMapSpec, ctx: JobContext) -> JobOutco
         "data": {"csv": CSV_NAME, "npz": NPZ_NAME},
     }
     notes = _notes(result)
-    notes += conditioning_map_errata_notes(spec, result, sweeps)
+    errata = conditioning_map_errata_notes(spec, result, sweeps)
     artifacts = conditioning_plots(spec, design, samples, maps, sweeps, progress)
     progress.report(95.0, "data files")
     artifacts += conditioning_data(spec, samples, indices, maps, sweeps, orientations)
     progress.report(100.0, "done")
-    return JobOutcome(result=result, artifacts=artifacts, notes=tuple(notes))
+    return JobOutcome(result=result, artifacts=artifacts, notes=tuple(notes), errata=tuple(errata))
 
 
 def _type_ii(indices: sp.Indices, samples: np.ndarray[Any, Any]) -> dict[str, Any]:

@@ -1,10 +1,11 @@
 """How a design and its conditioning are written into a result document.
 
-Every design an spm job evaluates is reported with the same block (METHODS.md §3):
-C_n = ``rms_inverse_condition`` (eq 25), ``mean_square_inverse_condition`` (eq 28, what
-the paper prints as "C_n"), ``gci`` (eq 24), ``min_inverse_condition`` over the
-samples, and the least 1/kappa on the closed workspace, boundary included. Non-finite
-values (a design that misses part of the workspace is never scored) become ``null``.
+Every design an spm job evaluates is reported with the same block
+(docs/methods/spherical-parallel.md): C_n = ``rms_inverse_condition`` (eq 25),
+``mean_square_inverse_condition`` (eq 28, what the paper prints as "C_n"), ``gci``
+(eq 24), ``min_inverse_condition`` over the samples, and the least 1/kappa on the closed
+workspace, boundary included. Non-finite values (a design that misses part of the
+workspace is never scored) become ``null``.
 """
 
 from __future__ import annotations

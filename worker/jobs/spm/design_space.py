@@ -1,5 +1,5 @@
 """The ``spm-design-space`` job: the feasible link angles per beta (Bai 2010 §4, eqs 14-19,
-Figs 5-6; METHODS.md §3).
+Figs 5-6; docs/methods/spherical-parallel.md).
 
 For each beta (and gamma, or gamma = beta), f_min and f_max of f_i = n_i . v_i over the
 continuous workspace and the rectangle |a1 - a2| <= acos(-f_min),
@@ -23,7 +23,7 @@ from worker.jobs.spm.index_distribution import (
     index_distribution,
     index_distribution_entry,
 )
-from worker.jobs.spm.paper_errata import design_space_errata_notes
+from worker.jobs.spm.paper_errata import design_space_paper_notes
 from worker.jobs.spm.specs import DesignSpaceSpec
 from worker.jobs.spm.workspace_sampling import (
     kinematic_workspace,
@@ -121,7 +121,8 @@ def run_design_space(spec: DesignSpaceSpec, ctx: JobContext) -> JobOutcome:
         )
         result["index_map"] = index_distribution_entry(dist, samples)
         result["sampling"] = sampling_entry(layout)
-    notes = _notes(result) + design_space_errata_notes(spec, result)
+    # The paper's Fig. 5 and §6.1 are reproduced: plain notes, not errata.
+    notes = _notes(result) + design_space_paper_notes(spec, result)
     artifacts: tuple[Artifact, ...] = ()
     if spec.plots:
         progress.report(80.0, "plots")

@@ -1,4 +1,5 @@
-"""Validated inputs of ``spm-design-space`` (Bai 2010 §4, eqs 14-19; METHODS.md §3).
+"""Validated inputs of ``spm-design-space`` (Bai 2010 §4, eqs 14-19; see
+docs/methods/spherical-parallel.md).
 
 The betas (a list, or a range {start, stop, step} whose count is bounded without
 dividing by the step), the base pyramid, and an optional index map over one beta's

@@ -1,9 +1,10 @@
 """The paper's worked examples (Bai 2010 §6, Figs 5-7, Tables 1-3), ready to POST.
 
 The designs and printed values are the paper's, exactly as printed; what re-computation
-found about them is in METHODS.md §3 and in the jobs' ``notes``
-(:mod:`worker.jobs.spm.paper_errata`). The paper says only "4 x 12 x 3 = 144" samples;
-every example uses the default reading of METHODS.md §3.
+found about them is in docs/methods/spherical-parallel.md and in the jobs' ``notes``
+and ``paper_errata`` (:mod:`worker.jobs.spm.paper_errata`). The paper says only
+"4 x 12 x 3 = 144" samples; every example uses the default reading of that page
+("Sampling the workspace").
 """
 
 from __future__ import annotations
@@ -36,7 +37,7 @@ __all__ = [
 @dataclass(frozen=True)
 class PaperDesign:
     """A design of the paper's tables and the value it prints beside it ("C_n" or
-    1/kappa; METHODS.md §3: it is mean(1/kappa^2), eq 28)."""
+    1/kappa; docs/methods/spherical-parallel.md: it is mean(1/kappa^2), eq 28)."""
 
     label: str
     alpha1_deg: float

@@ -1,5 +1,5 @@
 """The ``spm-optimisation`` job: the most dexterous design for a prescribed workspace
-(Bai 2010 §5, eqs 28-30, Tables 1-3; METHODS.md §3).
+(Bai 2010 §5, eqs 28-30, Tables 1-3; docs/methods/spherical-parallel.md).
 
 Maximises mean(1/kappa^2) over the workspace samples (eq 28) by nonlinear least squares
 from several starts drawn in the design space, feasible on the continuous workspace by
@@ -117,10 +117,11 @@ def run_optimisation(spec: OptimisationSpec, ctx: JobContext) -> JobOutcome:
         "paper": paper,
         "data": {"csv": CSV_NAME, "npz": NPZ_NAME},
     }
-    notes = _notes(spec, result) + optimisation_errata_notes(paper, optimum)
+    notes = _notes(spec, result)
+    errata = optimisation_errata_notes(paper, optimum)
     artifacts = optimisation_artifacts(spec, ws, samples, outcome, shown, paper, progress)
     progress.report(100.0, "done")
-    return JobOutcome(result=result, artifacts=artifacts, notes=tuple(notes))
+    return JobOutcome(result=result, artifacts=artifacts, notes=tuple(notes), errata=tuple(errata))
 
 
 def _bounds(spec: OptimisationSpec) -> dict[str, list[float]]:
@@ -202,7 +203,10 @@ def _notes(spec: OptimisationSpec, result: dict[str, Any]) -> list[str]:
     same = [t for t in optimum["twins"] if t["indices"]["mean_square_inverse_condition"]]
     if same:
         listed = "; ".join(f"{_angles_text(t)} branch {t['branch']:+d}" for t in same)
-        notes.append(f"Twin optima with the same conditioning (METHODS.md §3): {listed}.")
+        notes.append(
+            "Twin optima with the same conditioning (docs/methods/spherical-parallel.md, "
+            f"'Twins'): {listed}."
+        )
     tolerance = spec.singularity_tolerance
     if tolerance is not None:
         det2 = optimum["min_abs_det_a"] ** 2

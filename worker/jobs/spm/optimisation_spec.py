@@ -1,4 +1,5 @@
-"""Validated inputs of ``spm-optimisation`` (Bai 2010 §5, eqs 28-30; METHODS.md §3).
+"""Validated inputs of ``spm-optimisation`` (Bai 2010 §5, eqs 28-30; see
+docs/methods/spherical-parallel.md).
 
 The design parameters alpha1, alpha2, beta, gamma are each free (searched) or held at a
 given value; ``identical_platforms`` ties gamma to beta (the paper's Table 3). Angles
@@ -46,7 +47,8 @@ MAX_EVALUATIONS_PER_START = 2000
 #: Designs per side of the grid over the optimum's rectangle drawn in the index map.
 INDEX_MAP_POINTS = 31
 #: Candidate designs screened per start to seed it from the design space (the
-#: kinematics' ``screen``; METHODS.md §3: the optima sit on the design-space edges).
+#: kinematics' ``screen``; the optima sit on the design-space edges, see
+#: docs/methods/spherical-parallel.md).
 SCREEN_PER_START = 32
 #: Least lambda of eq 30 (|det A| >= 1e-6): the solver's penalty divides by it.
 MIN_SINGULARITY_TOLERANCE = 1e-12

@@ -1,8 +1,9 @@
 """The optimum of ``spm-optimisation`` as reported: in the paper's convention, with twins.
 
-The solver may end on any of the designs that score exactly alike (METHODS.md §3,
-"Equivalences"): e.g. (134.8, 90, 90) for Table 2's (45.2, 90, 90), or (180 - a1,
-180 - a2, 180 - beta, 180 - gamma) with identical platforms. On mirror-symmetric samples
+The solver may end on any of the designs that score exactly alike
+(docs/methods/spherical-parallel.md, "Twins: designs that score alike"): e.g. (134.8, 90, 90)
+for Table 2's (45.2, 90, 90), or (180 - a1, 180 - a2, 180 - beta, 180 - gamma) with
+identical platforms. On mirror-symmetric samples
 (psi -> (180 - psi1, psi2, -psi3) maps them onto themselves, as the default layouts of a
 full turn or of a torsion range symmetric about 0 do) the mirror image of the
 supplementary twin, (180 - a1, 180 - a2) on the SAME branch, scores alike too: e.g.
@@ -43,8 +44,8 @@ MIRROR_RELATION = (
 @dataclass(frozen=True)
 class Presented:
     """The optimum as reported: a design scoring exactly like the solver's best
-    (METHODS.md §3 equivalences) on the same samples and branch, in the paper's
-    convention (beta <= 90, then alpha1 <= 90), with its indices."""
+    (docs/methods/spherical-parallel.md, "Twins") on the same samples and branch, in the
+    paper's convention (beta <= 90, then alpha1 <= 90), with its indices."""
 
     design: sp.SpmDesign
     indices: sp.Indices

@@ -1,8 +1,8 @@
 """Notes on the paper's printed values, for requests that are recognisably its examples.
 
-METHODS.md §3 lists what re-computation found: the printed "C_n" is mean(1/kappa^2)
-(eq 28), not the root mean square of eq 25; Table 2's numerical optimum and Table 3's
-optimum are not optima; Table 3's printed twin is not a twin. A request is the paper's
+docs/methods/spherical-parallel.md lists what re-computation found: the printed "C_n" is
+mean(1/kappa^2) (eq 28), not the root mean square of eq 25; Table 2's numerical optimum
+and Table 3's optimum are not optima; Table 3's printed twin is not a twin. A request is the paper's
 Example I (II, III) when its workspace is a 120° (90°) cone with a full turn (a 90°
 cone with 30° of torsion) and its gamma matches (0; identical platforms for III).
 """
@@ -31,7 +31,7 @@ __all__ = [
     "BEATS_MARGIN",
     "FIG_7_RANGES",
     "conditioning_map_errata_notes",
-    "design_space_errata_notes",
+    "design_space_paper_notes",
     "example_number",
     "optimisation_errata_notes",
     "optimisation_paper_comparison",
@@ -42,7 +42,7 @@ __all__ = [
 ]
 
 #: An optimum "beats" a paper design when its eq 28 value is larger by more than this
-#: (the test tolerance on indices, METHODS.md §3).
+#: (the tolerance on indices in docs/methods/spherical-parallel.md).
 BEATS_MARGIN = 0.005
 _SAME = 1e-9
 
@@ -84,15 +84,15 @@ def paper_value_note(paper: PaperDesign, indices: dict[str, Any]) -> str:
         f"{paper.label} prints 'C_n' = {paper.printed:g} for {_design_text(paper)}: that is "
         f"mean(1/kappa^2) (eq 28), {mean_square:.4f} here, not the root mean square of eq 25 "
         f"({rms:.4f}); GCI {indices['gci']:.4f}. The paper does not say how it sampled; "
-        "values move by about ±0.04 with the layout (METHODS.md §3)."
+        "values move by about ±0.04 with the layout (docs/methods/spherical-parallel.md)."
     )
 
 
 _KNOWN = {
     TABLE_1.label: "Both twins, (60, 90, 90) and (120, 90, 90), score the same, as printed.",
     TABLE_2_NUMERICAL.label: "(48, 90, 90) is not the optimum of eq 28: it lies at alpha1 ≈ "
-    "45.2-46.6 with alpha2 = beta = 90 (METHODS.md §3); 'numerical better than graphic' holds.",
-    TABLE_2_GRAPHIC.label: "METHODS.md §3: 0.616 on the default samples, 0.606-0.675 across "
+    "45.2-46.6 with alpha2 = beta = 90; 'numerical better than graphic' holds.",
+    TABLE_2_GRAPHIC.label: "It scores 0.616 on the default samples, 0.606-0.675 across "
     "samplings; the printed 0.67 sits at the top of that range.",
     TABLE_3.label: "It is not the optimum: with beta = gamma free the optimum is about (55.0 "
     "or 125.0, 85.0 or 95.0, 48.1) with mean(1/kappa^2) ≈ 0.78; the printed twin (115.4, "
@@ -120,7 +120,8 @@ def paper_twin(paper: PaperDesign) -> PaperDesign:
                        paper.beta_deg, paper.gamma_deg, paper.printed)  # fmt: skip
 
 
-#: METHODS.md §3, Fig. 7 at psi1 = 35°: 1/kappa ranges over a torsion turn per psi2.
+#: Fig. 7 at psi1 = 35°: 1/kappa ranges over a torsion turn per psi2 (on dense sweeps,
+#: docs/methods/spherical-parallel.md).
 FIG_7_RANGES = {
     TABLE_2_NUMERICAL.label: {15.0: (0.895, 0.899), 30.0: (0.846, 0.863), 45.0: (0.584, 0.800)},
     TABLE_2_GRAPHIC.label: {15.0: (0.862, 0.867), 30.0: (0.773, 0.797), 45.0: (0.558, 0.758)},
@@ -135,15 +136,16 @@ def _fig_7_notes(paper: PaperDesign, sweeps: Any) -> list[str]:
         if math.isclose(psi1, 35.0) and key in ranges:
             lo, hi = ranges[key]
             parts.append(f"psi2 = {key:g}°: [{float(min(values)):.3f}, {float(max(values)):.3f}] "
-                         f"(METHODS.md: [{lo:.3f}, {hi:.3f}])")  # fmt: skip
+                         f"(expected [{lo:.3f}, {hi:.3f}])")  # fmt: skip
     if not parts:
         return []
     return [f"Fig. 7 ({paper.label}, psi1 = 35°), 1/kappa over a torsion turn: "
             + "; ".join(parts) + ". The curves have period 120° in psi3."]  # fmt: skip
 
 
-def design_space_errata_notes(spec: Any, result: dict[str, Any]) -> list[str]:
-    """§6.1 and Fig. 5: the paper's f bounds at beta = 75 and the line at beta = 60."""
+def design_space_paper_notes(spec: Any, result: dict[str, Any]) -> list[str]:
+    """§6.1 and Fig. 5: the paper's f bounds at beta = 75 and the line at beta = 60, both
+    reproduced (plain notes: they confirm the paper)."""
     gamma = None if spec.identical_platforms else spec.gamma_for(0.0)
     if example_number(spec.workspace, gamma, spec.identical_platforms) != 1:
         return []

@@ -1,4 +1,4 @@
-"""Validated inputs of the spm jobs (Bai 2010; METHODS.md §3).
+"""Validated inputs of the spm jobs (Bai 2010; docs/methods/spherical-parallel.md).
 
 Every model is frozen with ``extra="forbid"`` and rejects NaN and infinity; the field
 descriptions become the public JSON schema served at ``GET /v1/processes/{id}``. Angles

@@ -2,11 +2,12 @@
 
 A workspace is a pointing cone of opening 2T (tilt psi2 in [0, T], every azimuth psi1)
 with a torsion range psi3 in [lo, hi] (``[0, 360]`` is a full turn), sampled as
-METHODS.md §3 states by default (the paper's 4 x 12 x 3 = 144 orientations, read
-literally). Angles are in degrees; the kinematics converts to radians. Link and pyramid
-angles and the cone's half-opening stay at least :data:`ANGLE_MARGIN_DEG` away from 0 and
-180 (where a leg or the cone degenerates and the conversion to radians can round onto
-the excluded end); a torsion range spans at least ``MIN_STEP`` (1e-6) degrees.
+docs/methods/spherical-parallel.md states by default (the paper's 4 x 12 x 3 = 144
+orientations, read literally). Angles are in degrees; the kinematics converts to
+radians. Link and pyramid angles and the cone's half-opening stay at least
+:data:`ANGLE_MARGIN_DEG` away from 0 and 180 (where a leg or the cone degenerates and
+the conversion to radians can round onto the excluded end); a torsion range spans at
+least ``MIN_STEP`` (1e-6) degrees.
 """
 
 from __future__ import annotations
@@ -116,8 +117,8 @@ class WorkspaceSpec(FrozenSpec):
     samples: SampleCounts = Field(
         default_factory=SampleCounts,
         description="Sample counts {'azimuth', 'tilt', 'torsion'}; the default 4 x 12 x 3 = 144 "
-        "is the paper's, read literally (METHODS.md §3). Denser grids move the indices by "
-        "about ±0.04 and optimum angles by 1-2°.",
+        "is the paper's, read literally (docs/methods/spherical-parallel.md). Denser grids "
+        "move the indices by about ±0.04 and optimum angles by 1-2°.",
     )
 
     @field_validator("torsion_deg")

@@ -1,4 +1,4 @@
-"""The chain-parallelism job: the paper's Figs 2, 3 and 4 end to end (METHODS.md §4)."""
+"""The chain-parallelism job: the paper's Figs 2, 3 and 4 end to end (docs/methods/chains.md)."""
 
 from __future__ import annotations
 
@@ -98,7 +98,7 @@ def test_fig_2_arrangements() -> None:
 
 
 def test_fig_2_notes_give_printed_and_correct_values() -> None:
-    notes = "\n".join(run_example(0).notes)
+    notes = "\n".join(run_example(0).all_notes)
     assert "36, 120, 20, 126" in notes and "36, 120, -20, -136" in notes
     assert "90, 10, 85, 75" in notes and "90, 10, -85, -15" in notes
     assert "1/60, 1/60, 17/60, 18/60" in notes and "15/60" in notes
@@ -113,7 +113,7 @@ def test_fig_2d_against_fig_3() -> None:
     assert chains["Fig 3"]["P_normalized"] == pytest.approx(0.0034979, abs=5e-8)
     assert ranking(outcome, "by_P") == [(1, "Fig 2d"), (2, "Fig 3")]
     assert outcome.result["ranking"]["by_Q"]["measure"] == "Q_normalized"  # sums 60 and 90
-    notes = "\n".join(outcome.notes)
+    notes = "\n".join(outcome.all_notes)
     assert "0.0349" in notes and "0.0034979" in notes
     assert "ranking.by_Q uses Q_normalized" in notes
 
@@ -140,7 +140,7 @@ def test_fig_4_numbers() -> None:
 
 
 def test_fig_4_notes() -> None:
-    notes = run_example(2).notes
+    notes = run_example(2).all_notes
     text = "\n".join(notes)
     assert "11214" in text and "5912 + 1262 + 3940 = 11114" in text
     assert "9538" in text and "10474" in text and "= 10114" in text
@@ -155,15 +155,15 @@ def test_fig_4_notes() -> None:
 def test_recognition_ignores_rotation_reflection_and_names() -> None:
     mirrored = {"name": "mine", "lengths": [15, 17, 10, 18]}  # Fig 2e read the other way
     outcome, _ = run({"chains": [mirrored]})
-    assert any("is the paper's Fig 2e" in n for n in outcome.notes)
+    assert any("is the paper's Fig 2e" in n for n in outcome.all_notes)
     outcome, _ = run({"chains": [{"name": "other", "lengths": [18, 10, 15, 17]}]})
-    assert not any("paper" in n for n in outcome.notes)
+    assert not any("paper" in n for n in outcome.all_notes)
 
 
 def test_structures_have_a_note() -> None:
     outcome, _ = run({"chains": [{"name": "triangle", "lengths": [3, 4, 5]}]})
     assert outcome.result["chains"][0]["mobility"] == 0
-    assert any("a structure, not a mechanism" in n for n in outcome.notes)
+    assert any("a structure, not a mechanism" in n for n in outcome.all_notes)
 
 
 def test_links_form_single_loop_gets_arrangements() -> None:

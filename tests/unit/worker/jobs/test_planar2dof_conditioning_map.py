@@ -42,7 +42,7 @@ CSV_COLUMNS = [
     "x", "y", "reachable", "inverse_condition", "pressure_angle_1_deg",
     "pressure_angle_2_deg", "min_pressure_angle_deg", "joint_1_deg", "joint_2_deg",
 ]  # fmt: skip
-#: METHODS.md §2: point values (1/kappa, angles) to 1e-6.
+#: docs/methods/planar-parallel.md: point values (1/kappa, angles) to 1e-6.
 POINT_TOL = 1e-6
 SQRT_HALF = math.sqrt(0.5)
 
@@ -221,7 +221,7 @@ def test_column_description_matches_the_grid_past_delta_2(examples: Any) -> None
         region = examples[index][0].result["w_kappa0"]
         assert region["area"] == pytest.approx(region["area_grid"], rel=0.01)
         assert region["undescribed_area_grid"] < 0.005 * region["area_grid"]
-        assert not any("above a gap" in note for note in examples[index][0].notes)
+        assert not any("above a gap" in note for note in examples[index][0].all_notes)
 
 
 def test_delta_1_5_has_overhangs_noted(rendered: tuple[JobOutcome, RecordingContext]) -> None:
@@ -231,7 +231,7 @@ def test_delta_1_5_has_overhangs_noted(rendered: tuple[JobOutcome, RecordingCont
     assert region["area"] + region["undescribed_area_grid"] == pytest.approx(
         region["area_grid"], rel=0.01
     )
-    assert any("above a gap in some columns" in note for note in outcome.notes)
+    assert any("above a gap in some columns" in note for note in outcome.all_notes)
 
 
 def test_default_grid_holds_the_reachable_workspace(examples: Any) -> None:
@@ -251,10 +251,11 @@ def test_table_i_30_corners(examples: Any) -> None:
     assert [(p["x"], p["y"]) for p in points] == [
         (-1.4644, -0.9395), (1.4644, -0.9395), (1.4644, -1.6717), (-1.4644, -1.6717)
     ]  # fmt: skip
-    # METHODS.md: min 1/kappa on the paper's 30° rectangle is 0.486 < 0.526, at the corners
+    # docs/methods/planar-parallel.md: min 1/kappa on the paper's 30° rectangle is 0.486 < 0.526, at
+    # the corners
     assert points[2]["inverse_condition"] == pytest.approx(0.486, abs=5e-4)
     assert points[2]["inverse_condition"] == pytest.approx(points[3]["inverse_condition"])
-    notes = "\n".join(outcome.notes)
+    notes = "\n".join(outcome.all_notes)
     assert "does not lie inside its W_kappa0: min 1/kappa on it is 0.4859" in notes
     assert "vs the limit 0.526" in notes
 
@@ -262,7 +263,7 @@ def test_table_i_30_corners(examples: Any) -> None:
 def test_table_i_35_e_erratum(examples: Any) -> None:
     outcome = examples[4][0]
     assert outcome.result["e"] == pytest.approx(0.6010407640085655, abs=1e-12)
-    notes = "\n".join(outcome.notes)
+    notes = "\n".join(outcome.all_notes)
     assert "Table I prints e = 0.6001 for delta = 1.85" in notes and "0.6010" in notes
 
 
@@ -296,7 +297,7 @@ def test_telescopic_legs(examples: Any) -> None:
     # W_kappa0 is two lobes; the column-wise boundary holds the lower one only
     region = result["w_kappa0"]
     assert region["area"] == pytest.approx(region["area_grid"] / 2, rel=0.02)
-    notes = "\n".join(outcome.notes)
+    notes = "\n".join(outcome.all_notes)
     assert "both pressure angles are 90° everywhere" in notes and "above a gap" in notes
 
 
@@ -313,7 +314,8 @@ def test_isotropic_point_as_a_given_point(ctx: RecordingContext) -> None:
     h = SQRT_HALF * 2.7
     outcome = run(ctx, l2=1.7, architecture="isotropic", points=[[0.0, -h]])
     (entry,) = outcome.result["points"]
-    # METHODS.md: at (0, -H) th11 = -45°, th12 = -135°, 1/kappa = 1, links perpendicular
+    # docs/methods/planar-parallel.md: at (0, -H) th11 = -45°, th12 = -135°, 1/kappa = 1, links
+    # perpendicular
     assert entry["inverse_condition"] == pytest.approx(1.0, abs=POINT_TOL)
     assert entry["joint_angles_deg"] == pytest.approx([-45.0, -135.0], abs=POINT_TOL)
     assert entry["pressure_angles_deg"] == pytest.approx([90.0, 90.0], abs=POINT_TOL)
@@ -342,7 +344,7 @@ def test_unreachable_points_are_null_and_noted(ctx: RecordingContext) -> None:
     assert [e["reachable"] for e in entries] == [True, False, False]
     assert entries[1]["inverse_condition"] is None and entries[1]["joint_angles_deg"] is None
     assert outcome.result["architecture"] == "given" and outcome.result["e"] == 0.3
-    notes = "\n".join(outcome.notes)
+    notes = "\n".join(outcome.all_notes)
     assert "2 of the 3 given points are out of reach in working mode [+1, -1]" in notes
     assert "#2 (5, 5), #3 (0, 0)" in notes
 
@@ -356,7 +358,7 @@ def test_another_working_mode_has_no_isotropic_point(ctx: RecordingContext) -> N
     assert iso["inverse_condition"] == pytest.approx(0.894427191, abs=1e-6)  # 2/√5
     assert outcome.result["working_mode"] == [-1, 1]
     assert any("No isotropic point (1/kappa = 1) in working mode [-1, +1]" in n
-               for n in outcome.notes)  # fmt: skip
+               for n in outcome.all_notes)  # fmt: skip
 
 
 @pytest.mark.usefixtures("fast_figures")
@@ -368,7 +370,7 @@ def test_folded_links_are_not_an_isotropic_point(ctx: RecordingContext) -> None:
     assert iso["degenerate"] is True and iso["isotropic"] is False
     assert iso["inverse_condition"] == pytest.approx(1.0, abs=1e-6)
     assert iso["min_pressure_angle_deg"] < 1.0
-    assert any("is where the links fold" in n for n in outcome.notes)
+    assert any("is where the links fold" in n for n in outcome.all_notes)
 
 
 @pytest.mark.usefixtures("fast_figures")
@@ -385,7 +387,7 @@ def test_linear_drive(ctx: RecordingContext) -> None:
     assert entry["joint_angles_deg"] is None
     bounds = result["discretisation"]["grid"]["bounds"]
     assert bounds == pytest.approx([-4.12, 4.12, -2.06, 2.06])
-    assert any("1/kappa does not depend on x" in n for n in outcome.notes)
+    assert any("1/kappa does not depend on x" in n for n in outcome.all_notes)
 
 
 @pytest.mark.usefixtures("fast_figures")
@@ -400,7 +402,7 @@ def test_given_bounds_and_an_empty_w_kappa0(ctx: RecordingContext) -> None:
     assert result["summary"]["inverse_condition"] == {"min": None, "max": None, "mean": None}
     assert result["w_kappa0"]["found"] is True  # the region exists, off this grid
     assert result["w_kappa0"]["area_grid"] == 0.0
-    assert any("No grid node is reachable" in note for note in outcome.notes)
+    assert any("No grid node is reachable" in note for note in outcome.all_notes)
 
 
 @pytest.mark.usefixtures("fast_figures")
@@ -411,7 +413,7 @@ def test_an_empty_w_kappa0_is_noted(ctx: RecordingContext) -> None:
     assert region["found"] is False and region["area"] == 0.0 and region["boundary"] == []
     assert outcome.result["isotropic_point"] is None
     assert outcome.result["summary"]["inverse_condition"]["max"] == 0.0
-    notes = "\n".join(outcome.notes)
+    notes = "\n".join(outcome.all_notes)
     assert "W_kappa0 is empty" in notes and "no isotropic point" in notes
 
 

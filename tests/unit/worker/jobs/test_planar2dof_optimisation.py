@@ -1,5 +1,5 @@
 """The planar2dof-optimisation job: Table I's two columns, from the paper's inputs and at
-its printed limits, end to end, against METHODS.md §2's numbers and tolerances."""
+its printed limits, end to end, against docs/methods/planar-parallel.md's numbers and tolerances."""
 
 from __future__ import annotations
 
@@ -49,7 +49,7 @@ SWEEP_ARTIFACTS = {
     "sweep.csv": "text/csv",
     "optimisation.npz": "application/x-npz",
 }
-#: METHODS.md §2 tolerances.
+#: docs/methods/planar-parallel.md tolerances.
 LENGTH_TOL, AREA_TOL, MEAN_TOL, DELTA_TOL, LIMIT_TOL = 0.002, 0.01, 0.002, 0.05, 1e-4
 
 
@@ -106,7 +106,7 @@ def row_at(outcome: JobOutcome, delta: float) -> dict[str, Any]:
 
 
 def notes_of(outcome: JobOutcome) -> str:
-    return "\n".join(outcome.notes)
+    return "\n".join(outcome.all_notes)
 
 
 EXAMPLES = ["beta_30", "beta_35", "printed_526", "printed_581"]
@@ -240,7 +240,8 @@ def test_sweep_shape_follows_fig_8(
     # §IV: the mean varies slightly over delta (0.74-0.80 at 30°, 0.77-0.83 at 35°) while
     # S/S_max peaks. The ends here were re-computed by an independent brute force (trig IK,
     # numpy SVD, column bisection); at 35° they round to the paper's, at 30° they do not
-    # on the 101² mesh (the paper's Table I mean matches a 21² mesh, METHODS.md §2).
+    # on the 101² mesh (the paper's Table I mean matches a 21² mesh,
+    # docs/methods/planar-parallel.md).
     sweep = request.getfixturevalue(name)[0].result["sweep"]
     means = [row["mean_inverse_condition"] for row in sweep]
     deltas = [row["delta"] for row in sweep]
@@ -333,7 +334,8 @@ def test_a_sweep_at_a_printed_limit_is_compared_with_table_i(ctx: RecordingConte
     # the paper's own Fig. 8(a) setting: 1/kappa0 = 0.526, lambda = 4, delta in [1, 2.5]
     outcome = run(ctx, inverse_condition_limit=0.526, plots=False)
     result, notes = outcome.result, notes_of(outcome)
-    assert result["optimum"]["delta"] == pytest.approx(1.69, abs=1e-9)  # METHODS.md
+    # docs/methods/planar-parallel.md: the maximum of eta is at 1.69
+    assert result["optimum"]["delta"] == pytest.approx(1.69, abs=1e-9)
     assert result["window"] == pytest.approx([1.65, 1.73], abs=1e-9)
     assert ("The paper's optimum delta = 1.7; eta is flat: within 0.001 of its maximum on "
             "[1.65, 1.73], max at delta = 1.69") in notes  # fmt: skip
@@ -388,7 +390,7 @@ def test_a_coarse_sweep_in_a_narrow_range(ctx: RecordingContext) -> None:
     assert result["inverse_condition_limit"] == pytest.approx(0.52555, abs=LIMIT_TOL)
     assert result["optimum"]["b"] == pytest.approx(2 * result["optimum"]["h"])
     assert result["mean_mesh"] == 21
-    assert not any("Table I" in note for note in outcome.notes)  # lambda = 2 is not the paper's
+    assert not any("Table I" in note for note in outcome.all_notes)  # lambda = 2 is not the paper's
 
 
 @pytest.mark.usefixtures("fast_figures")
@@ -396,7 +398,7 @@ def test_optimum_at_the_end_of_the_range_is_noted(ctx: RecordingContext) -> None
     outcome = run(ctx, inverse_condition_limit=0.5, delta_range=[1.0, 1.2], delta_step=0.1,
                   mean_mesh=5)  # fmt: skip
     assert outcome.result["optimum"]["delta"] == 1.2
-    assert any("lies at an end of the swept range [1, 1.2]" in note for note in outcome.notes)
+    assert any("lies at an end of the swept range [1, 1.2]" in note for note in outcome.all_notes)
 
 
 @pytest.mark.usefixtures("fast_figures")
@@ -427,7 +429,7 @@ def test_a_single_delta_beyond_the_papers_range(ctx: RecordingContext) -> None:
     assert result["S_max"] == pytest.approx(reference.S_max, rel=1e-9)
     assert best["S_over_S_max"] == pytest.approx(best["S"] / reference.S_max, rel=1e-9)
     assert best["S_over_S_max"] < 1.0
-    assert not any("S_max is its S" in note for note in outcome.notes)
+    assert not any("S_max is its S" in note for note in outcome.all_notes)
 
 
 def test_plots_false_gives_data_files_only(ctx: RecordingContext) -> None:
@@ -439,7 +441,8 @@ def test_plots_false_gives_data_files_only(ctx: RecordingContext) -> None:
 
 @pytest.mark.parametrize(("mesh", "mean"), [(5, 0.7249), (21, 0.7442)])
 def test_the_mean_depends_on_the_mesh(ctx: RecordingContext, mesh: int, mean: float) -> None:
-    # METHODS.md: at 1/kappa0 = 0.526, delta = 1.7 the mean is 0.7249 on 5², 0.7442 on 21²
+    # docs/methods/planar-parallel.md: at 1/kappa0 = 0.526, delta = 1.7 the mean is 0.7249 on 5²,
+    # 0.7442 on 21²
     # (the paper's 0.7444 is close to the latter), 0.7459 on 101²
     outcome = run(ctx, inverse_condition_limit=0.526, delta=1.7, mean_mesh=mesh, plots=False)
     result = outcome.result

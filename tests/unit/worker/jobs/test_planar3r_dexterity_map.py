@@ -34,7 +34,7 @@ ARTIFACTS = {
     "dexterity_map.csv": "text/csv",
     "dexterity_map.npz": "application/x-npz",
 }
-#: METHODS.md §1: Example 1, Case 3 (joint limits) at the task points A..E.
+#: docs/methods/planar-serial.md: Example 1, Case 3 (joint limits) at the task points A..E.
 CASE_3_DZ = {"A": 1.0, "B": 0.8807, "C": 0.7436, "D": 0.7697, "E": 0.7273}
 
 
@@ -213,7 +213,7 @@ def test_example_2_quick_look_fits_the_synchronous_limit() -> None:
 
 
 def test_ideal_notes(ideal: tuple[JobOutcome, RecordingContext]) -> None:
-    notes = ideal[0].notes
+    notes = ideal[0].all_notes
     assert len(notes) == 1
     assert "Region 2" in notes[0] and "[0, 7] ∪ [9, 21]" in notes[0]
     assert "0.960107" in notes[0]
@@ -248,7 +248,7 @@ def test_limited_map_loses_dexterity(limited: tuple[JobOutcome, RecordingContext
 
 
 def test_limited_notes(limited: tuple[JobOutcome, RecordingContext]) -> None:
-    notes = "\n".join(limited[0].notes)
+    notes = "\n".join(limited[0].all_notes)
     for label in "BCDE":
         assert f"task point {label} " in notes
     assert "task point A " not in notes
@@ -302,7 +302,7 @@ def test_full_turn_limits_use_the_closed_form(ctx: RecordingContext) -> None:
     assert outcome.result["method"] == "exact-closed-form"
     assert outcome.result["joint_limits_deg"] == [[-180.0, 180.0]] * 3
     assert outcome.result["task_points"][0]["d_z"] == 1.0
-    assert any("full turn" in note for note in outcome.notes)
+    assert any("full turn" in note for note in outcome.all_notes)
 
 
 @pytest.mark.usefixtures("fast_figures")
@@ -319,7 +319,7 @@ def test_polyline_trajectory_and_shortfalls(ctx: RecordingContext) -> None:
     # samples every 1 unit along the x axis from 0 to 40: d_z = 1 on [0, 7] and [9, 21]
     assert trajectory["fully_dexterous_fraction"] == pytest.approx(21 / 41)
     assert trajectory["d_z_min"] == 0.0
-    notes = "\n".join(outcome.notes)
+    notes = "\n".join(outcome.all_notes)
     assert "task point A (30, 0) has d_z" in notes and "task point C (40, 0)" in notes
     assert "task point B" not in notes
     assert "fully dexterous at 51.2% of its 41 samples" in notes
@@ -329,7 +329,7 @@ def test_polyline_trajectory_and_shortfalls(ctx: RecordingContext) -> None:
 def test_many_shortfalls_are_summarised(ctx: RecordingContext) -> None:
     points = [[30 + 0.1 * i, 0] for i in range(25)]
     outcome = run(ctx, grid={"points_per_axis": 3}, task_points=points)
-    shortfalls = [n for n in outcome.notes if "task point" in n]
+    shortfalls = [n for n in outcome.all_notes if "task point" in n]
     assert len(shortfalls) == 21
     assert shortfalls[-1].startswith("5 more task points have d_z < 1")
 
@@ -346,7 +346,7 @@ def test_swapped_links_have_an_empty_region_2(ctx: RecordingContext) -> None:
     assert region_3["corrected"].startswith("d_z < 1 throughout")
     assert outcome.result["areas"]["fully_dexterous"] == pytest.approx(49 * math.pi)
     # the paper's Example 1, Case 2 arm: its printed band is wrong
-    notes = "\n".join(outcome.notes)
+    notes = "\n".join(outcome.all_notes)
     assert "8 < d <= 16" in notes and "0.035793 vs 0.298758" in notes
 
 
@@ -362,7 +362,7 @@ def test_example_2_design_under_the_papers_limits(ctx: RecordingContext) -> None
     expected = {"A": 0.8955, "B": 0.7766, "C": 0.8630, "D": 0.7840, "E": 0.7874, "F": 1.0,
                 "G": 0.9805}  # fmt: skip
     assert found == pytest.approx(expected, abs=6e-5)
-    notes = "\n".join(outcome.notes)
+    notes = "\n".join(outcome.all_notes)
     assert "three task points" in notes and "1 (F) has d_z = 1" in notes
 
 

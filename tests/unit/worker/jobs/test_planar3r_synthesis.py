@@ -33,7 +33,7 @@ GRASHOF_KEYS = {
     "lengths", "names", "shortest", "longest", "s_plus_l", "p_plus_q", "is_grashof", "d",
     "end_effector_fully_rotatable",
 }  # fmt: skip
-#: METHODS.md §1, Case 3 (th1, th2 in [-150, 150], th3 in [-175, 175] degrees).
+#: docs/methods/planar-serial.md, Case 3 (th1, th2 in [-150, 150], th3 in [-175, 175] degrees).
 EXAMPLE_1_CASE_3 = {"A": 1.0, "B": 0.8807, "C": 0.7436, "D": 0.7697, "E": 0.7273}
 EXAMPLE_2_CASE_3 = {
     "F": 1.0, "G": 0.9805, "A": 0.8955, "C": 0.8630, "E": 0.7874, "D": 0.7840, "B": 0.7766,
@@ -70,7 +70,7 @@ def d_z_by_label(entries: list[dict[str, Any]]) -> dict[str, float]:
 
 
 def joined_notes(outcome: JobOutcome) -> str:
-    return "\n".join(outcome.notes)
+    return "\n".join(outcome.all_notes)
 
 
 EXAMPLES = ["example_1", "example_1_exact", "example_2"]
@@ -285,7 +285,7 @@ def test_without_limits_there_are_two_cases(ctx: RecordingContext) -> None:
     assert [c["case"] for c in result["cases"]] == [1, 2]
     assert result["discretisation"]["orientation_samples"] is None
     assert result["discretisation"]["task_points"] == "exact-closed-form"
-    assert not any("Case 3" in note for note in outcome.notes)
+    assert not any("Case 3" in note for note in outcome.all_notes)
     assert ctx.percents == sorted(ctx.percents) and ctx.percents[-1] == 100.0
 
 

@@ -1,5 +1,5 @@
 """The spm-conditioning-map job: the paper's designs (Tables 1-3, Fig. 7) end to end,
-checked against METHODS.md §3 and the kinematics' own re-computation."""
+checked against docs/methods/spherical-parallel.md and the kinematics' own re-computation."""
 
 from __future__ import annotations
 
@@ -134,7 +134,8 @@ class TestWorkedExamples:
         )
 
 
-# -- METHODS.md §3 ---------------------------------------------------------------------
+# -- docs/methods/spherical-parallel.md
+# ---------------------------------------------------------------------
 
 
 def test_table_1_values(table_1: tuple[JobOutcome, RecordingContext]) -> None:
@@ -153,7 +154,7 @@ def test_table_1_values(table_1: tuple[JobOutcome, RecordingContext]) -> None:
 
 
 def test_table_1_notes(table_1: tuple[JobOutcome, RecordingContext]) -> None:
-    notes = " ".join(table_1[0].notes)
+    notes = " ".join(table_1[0].all_notes)
     assert "1/kappa falls to 0" in notes
     assert "Table 1 prints 'C_n' = 0.28" in notes and "0.2974 here" in notes
     assert "not the root mean square of eq 25 (0.5453)" in notes
@@ -165,14 +166,14 @@ def test_table_2_values(table_2: tuple[JobOutcome, RecordingContext]) -> None:
     assert indices["rms_inverse_condition"] == pytest.approx(0.8379, abs=1e-4)
     assert indices["gci"] == pytest.approx(0.8357, abs=1e-4)
     assert indices["mean_square_inverse_condition"] == pytest.approx(0.72, abs=0.04)
-    assert "(48, 90, 90) is not the optimum" in " ".join(table_2[0].notes)
+    assert "(48, 90, 90) is not the optimum" in " ".join(table_2[0].all_notes)
 
 
 def test_graphic_design_is_an_erratum(graphic: tuple[JobOutcome, RecordingContext]) -> None:
     value = graphic[0].result["indices"]["mean_square_inverse_condition"]
     assert value == pytest.approx(0.616, abs=1e-3)
     assert abs(value - TABLE_2_GRAPHIC.printed) > 0.04  # printed 0.67: outside ±0.04
-    assert "prints 'C_n' = 0.67" in " ".join(graphic[0].notes)
+    assert "prints 'C_n' = 0.67" in " ".join(graphic[0].all_notes)
 
 
 def test_table_3_values(table_3: tuple[JobOutcome, RecordingContext]) -> None:
@@ -182,10 +183,11 @@ def test_table_3_values(table_3: tuple[JobOutcome, RecordingContext]) -> None:
     # a limited range sits in the middle of the sweeps' turn
     assert result["torsion_sweeps"][0]["psi3_deg"] == {"from": -180.0, "to": 180.0, "step": 1.0}
     assert result["indices"]["mean_square_inverse_condition"] == pytest.approx(0.585, abs=0.04)
-    assert "It is not the optimum" in " ".join(table_3[0].notes)
+    assert "It is not the optimum" in " ".join(table_3[0].all_notes)
 
 
-#: METHODS.md §3, Fig. 7 at psi1 = 35°: the range of 1/kappa over a torsion turn.
+#: docs/methods/spherical-parallel.md, Fig. 7 at psi1 = 35°: the range of 1/kappa over a torsion
+#: turn.
 FIG_7 = {
     "table_2": {15.0: (0.895, 0.899), 30.0: (0.846, 0.863), 45.0: (0.584, 0.800)},
     "graphic": {15.0: (0.862, 0.867), 30.0: (0.773, 0.797), 45.0: (0.558, 0.758)},
@@ -206,7 +208,7 @@ def test_fig_7_ranges(name: str, request: pytest.FixtureRequest) -> None:
     with np.load(io.BytesIO(artifact(outcome, "conditioning_map.npz"))) as npz:
         values = npz["sweep_inverse_condition"]
     np.testing.assert_allclose(values[:, :121], values[:, 120:241], atol=1e-12)  # period 120°
-    assert "Fig. 7" in " ".join(outcome.notes)
+    assert "Fig. 7" in " ".join(outcome.all_notes)
 
 
 # -- single poses ----------------------------------------------------------------------
@@ -263,7 +265,7 @@ def test_an_infeasible_design_is_never_scored(unrendered: Any) -> None:
     assert not unreachable["real"] and unreachable["condition_number"] is None
     assert unreachable["joint_angles_deg"][0] is None and unreachable["joint_angles_deg"][1] > 0
     assert centre["real"] and centre["inverse_condition"] > 0.0
-    assert "15 of 144 samples have no real inverse kinematics" in " ".join(outcome.notes)
+    assert "15 of 144 samples have no real inverse kinematics" in " ".join(outcome.all_notes)
 
 
 def test_without_plots_only_data(unrendered: Any) -> None:
@@ -278,7 +280,7 @@ def test_denser_sampling_is_reported(unrendered: Any) -> None:
     assert result["sampling"]["n"] == 12 * 24 * 9 and not result["sampling"]["default"]
     assert result["inverse_kinematics"]["entries"] is None  # over 2000: in the CSV only
     assert not result["inverse_kinematics"]["listed"]
-    # METHODS.md §3: the values move by about ±0.04 with the layout
+    # docs/methods/spherical-parallel.md: the values move by about ±0.04 with the layout
     assert result["indices"]["mean_square_inverse_condition"] == pytest.approx(0.2974, abs=0.04)
 
 

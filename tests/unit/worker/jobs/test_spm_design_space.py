@@ -125,7 +125,7 @@ def test_fig_6_index_map(fig_5: tuple[JobOutcome, RecordingContext]) -> None:
 
 
 def test_fig_5_notes(fig_5: tuple[JobOutcome, RecordingContext]) -> None:
-    notes = " ".join(fig_5[0].notes)
+    notes = " ".join(fig_5[0].all_notes)
     assert "for beta = 75° the paper gives f_min = -0.707" in notes and "reproduced" in notes
     assert "beta = 60° degenerates into the line a1 + a2 = 180°" in notes
 
@@ -174,7 +174,7 @@ def test_an_empty_design_space(unrendered: Any) -> None:
     rows = by_beta(outcome)
     assert rows[90.0]["status"] == "empty" and rows[90.0]["empty"]
     assert rows[90.0]["rectangle"]["area_deg2"] == 0.0
-    assert "Empty at beta = 90°" in " ".join(outcome.notes)
+    assert "Empty at beta = 90°" in " ".join(outcome.all_notes)
 
 
 def test_rendered_figures(monkeypatch: pytest.MonkeyPatch) -> None:

@@ -1,4 +1,4 @@
-"""The spm-optimisation job: the paper's Tables 1-3 against METHODS.md §3."""
+"""The spm-optimisation job: the paper's Tables 1-3 against docs/methods/spherical-parallel.md."""
 
 from __future__ import annotations
 
@@ -28,7 +28,7 @@ RESULT_KEYS = {
 DATA = {"optimisation_starts.csv", "optimisation.npz"}
 PLOTS = {f"{stem}.{ext}" for stem in ("index_map", "starts", "torsion_sweeps")
          for ext in ("png", "svg")}  # fmt: skip
-#: METHODS.md §3 tolerances: optimum angles ±1°, indices ±0.005.
+#: docs/methods/spherical-parallel.md tolerances: optimum angles ±1°, indices ±0.005.
 ANGLE, INDEX = 1.0, 0.005
 
 
@@ -164,7 +164,7 @@ def test_table_1_notes_and_paper(table_1: tuple[JobOutcome, RecordingContext]) -
         0.2974, abs=1e-4
     )
     assert paper["designs"][0]["optimum_beats_it"] is False
-    notes = " ".join(outcome.notes)
+    notes = " ".join(outcome.all_notes)
     assert "sits on the edge of the design space" in notes
     assert "Table 1 prints 'C_n' = 0.28" in notes and "does not beat it" in notes
 
@@ -192,14 +192,15 @@ def test_table_2_optimum_beats_the_printed_design(
     outcome, _ = table_2
     optimum = outcome.result["optimum"]
     a1, a2, beta, _ = angles(optimum)
-    assert 45.2 - ANGLE <= a1 <= 46.6 + ANGLE  # METHODS.md: 45.2-46.6, not the printed 48
+    # docs/methods/spherical-parallel.md: 45.2-46.6, not the printed 48
+    assert 45.2 - ANGLE <= a1 <= 46.6 + ANGLE
     assert (a2, beta) == pytest.approx((90.0, 90.0), abs=ANGLE)
     assert optimum["mean_square_inverse_condition"] == pytest.approx(0.72, abs=0.04)
     numerical, graphic = outcome.result["paper"]["designs"]
     assert numerical["indices"]["mean_square_inverse_condition"] == pytest.approx(0.7021, 1e-4)
     assert graphic["indices"]["mean_square_inverse_condition"] == pytest.approx(0.616, abs=1e-3)
     assert numerical["optimum_beats_it"] and graphic["optimum_beats_it"]
-    notes = " ".join(outcome.notes)
+    notes = " ".join(outcome.all_notes)
     assert "beats the paper's Table 2, numerical method design (48, 90, 90)" in notes
     assert {a.name for a in outcome.artifacts} == DATA  # plots: false
 
@@ -213,7 +214,7 @@ def test_the_optimum_is_shown_in_the_papers_convention(
     found = optimum["found_as"]
     if found is not None:  # the solver ended on the twin (134.8, 90, 90)
         assert found["alpha1_deg"] == pytest.approx(180.0 - optimum["alpha1_deg"], abs=1e-6)
-        assert "The solver ended at" in " ".join(outcome.notes)
+        assert "The solver ended at" in " ".join(outcome.all_notes)
     own = rescored(optimum, outcome.result, -1)
     assert optimum["mean_square_inverse_condition"] == pytest.approx(
         own.mean_square_inverse_condition, abs=1e-12
@@ -231,7 +232,8 @@ def test_table_3_optimum_beats_the_printed_design(
     optimum = result["optimum"]
     assert result["identical_platforms"] and result["held_deg"] == {}
     assert optimum["beta_deg"] == optimum["gamma_deg"] and len(result["starts"]) == 2
-    # on the default 144 samples (METHODS.md: angles move by 1-2° with the layout)
+    # on the default 144 samples (docs/methods/spherical-parallel.md: angles move by 1-2° with the
+    # layout)
     assert angles(optimum)[:3] == pytest.approx((56.5, 87.3, 47.4), abs=ANGLE)
     if optimum["found_as"] is not None:  # e.g. (123.5, 92.7, 47.4): same branch, same value
         found = rescored(optimum["found_as"], result, optimum["branch"])
@@ -245,7 +247,7 @@ def test_table_3_optimum_beats_the_printed_design(
     assert printed["indices"]["mean_square_inverse_condition"] == pytest.approx(0.585, abs=0.04)
     assert printed["optimum_beats_it"]
     assert twin["indices"]["mean_square_inverse_condition"] == pytest.approx(0.50, abs=0.01)
-    notes = " ".join(outcome.notes)
+    notes = " ".join(outcome.all_notes)
     assert "beats the paper's Table 3 design (54.9, 115.4, 33.3, gamma 33.3)" in notes
     assert "the supplementary twin of (54.9, 115.4) is (125.1, 64.6)" in notes
 
@@ -260,7 +262,8 @@ def test_table_3_optimum_on_a_dense_grid(unrendered: Any) -> None:
                              plots=False))  # fmt: skip
     optimum = outcome.result["optimum"]
     a1, a2, beta, _ = angles(optimum)
-    # METHODS.md §3: about (55.0 or 125.0, 85.0 or 95.0, 48.1), mean(1/kappa^2) ≈ 0.78
+    # docs/methods/spherical-parallel.md: about (55.0 or 125.0, 85.0 or 95.0, 48.1), mean(1/kappa^2)
+    # ≈ 0.78
     assert (a1, a2, beta) == pytest.approx((55.0, 85.0, 48.1), abs=ANGLE)
     assert optimum["mean_square_inverse_condition"] == pytest.approx(0.78, abs=INDEX)
 
@@ -273,7 +276,7 @@ def test_table_3_with_beta_held(unrendered: Any) -> None:
     a1, a2, beta, gamma = angles(optimum)
     if a1 > 90.0:
         a1, a2 = 180.0 - a1, 180.0 - a2
-    # METHODS.md §3: near (57.6, 113.5) at 0.587
+    # docs/methods/spherical-parallel.md: near (57.6, 113.5) at 0.587
     assert (a1, a2, beta, gamma) == pytest.approx((57.6, 113.5, 33.3, 33.3), abs=ANGLE)
     assert optimum["mean_square_inverse_condition"] == pytest.approx(0.587, abs=INDEX)
 
@@ -291,7 +294,7 @@ def test_no_feasible_design(unrendered: Any) -> None:
     assert all(not s["feasible"] and s["mean_square_inverse_condition"] is None
                for s in result["starts"])  # fmt: skip
     assert result["evaluations"] > 0
-    assert "No design" in " ".join(outcome.notes)
+    assert "No design" in " ".join(outcome.all_notes)
     assert {a.name for a in outcome.artifacts} == DATA
 
 
@@ -301,7 +304,7 @@ def test_singularity_tolerance(unrendered: Any) -> None:
     assert result["singularity_tolerance"] == 0.65
     optimum = result["optimum"]
     assert optimum["min_abs_det_a"] ** 2 >= 0.65
-    assert "eq 30 holds at every sample" in " ".join(outcome.notes)
+    assert "eq 30 holds at every sample" in " ".join(outcome.all_notes)
 
 
 def test_same_seed_same_result(unrendered: Any) -> None:
