@@ -7,17 +7,23 @@ from collections.abc import AsyncIterator
 from contextlib import asynccontextmanager
 from typing import TYPE_CHECKING, Any
 
-from fastapi import FastAPI
-from fastapi.responses import JSONResponse
+from fastapi import FastAPI, Request, Response
+from fastapi.responses import HTMLResponse, JSONResponse
+from fastapi.staticfiles import StaticFiles
 
+from service.api_docs import install_api_docs
 from service.config import ServiceSettings
 from service.errors import install_error_handlers, problem_response
 from service.job_watcher import JobWatcher
+from service.ogc.forwarded import ForwardedHeaders
+from service.ogc.router import ogc_router
 from service.openapi import install_openapi
+from service.pages import STATIC_DIR, STATIC_PREFIX, FormatQuery, Pages, PageSettings, wants_html
+from service.pages.views import landing_page
 from service.problems import PROBLEM_TYPES
 from service.request_guard import RequestGuard
-from service.routes import health, jobs, processes
-from service.routes.process_operations import FAMILY_TAGS, execution_router
+from service.routes import health, job_events, jobs, methods, page_actions, processes
+from service.routes.process_operations import FAMILY_TAGS, execution_router, family_of
 from worker.dispatch import Dispatcher, make_dispatcher
 from worker.pool import WorkerPool
 from worker.processes import default_registry
@@ -97,29 +103,48 @@ def create_app(settings: ServiceSettings | None = None) -> FastAPI:
         version="0.1.0",
         description=DESCRIPTION,
         lifespan=lifespan,
+        docs_url=None,  # /docs and /redoc: service.api_docs, from local assets
+        redoc_url=None,
         openapi_tags=[
             {"name": "processes", "description": "What dexlab runs; the generic execute."},
             *({"name": tag, "description": text} for tag, text in FAMILY_TAGS.values()),
             {"name": "jobs", "description": "Status, results, artifacts, dismissal."},
             {"name": "health", "description": "Liveness and readiness probes."},
+            {"name": "OGC API – Processes", "description": "OGC API - Processes - Part 1: "
+             "Core at /ogc/: the same processes and jobs in the standard's documents."},
             {"name": "meta", "description": "The landing page and problem types."},
         ],
     )
     install_error_handlers(app)
     install_openapi(app, registry)
+    install_api_docs(app)
     app.add_middleware(
         RequestGuard,
         routes=lambda: app.routes,
         max_body_bytes=settings.max_body_bytes,
         max_json_depth=settings.max_json_depth,
     )
+    # Outermost: a trusted proxy's X-Forwarded-* headers, before anything reads the URL.
+    app.add_middleware(ForwardedHeaders, trusted=settings.forwarded_allow_ips)
     app.include_router(execution_router(registry))
     app.include_router(processes.router)
     app.include_router(jobs.router)
     app.include_router(health.router)
+    app.include_router(ogc_router())  # OGC API - Processes at /ogc/, same store and jobs
+    # Pages for people: HTML on the GET routes above, method pages, form actions.
+    app.state.pages = Pages(PageSettings(), family_tags=FAMILY_TAGS, family_of=family_of)
+    app.include_router(job_events.router)
+    app.include_router(methods.router)
+    app.include_router(page_actions.router)
+    app.mount(STATIC_PREFIX, StaticFiles(directory=STATIC_DIR), name="pages-static")
 
-    @app.get("/", tags=["meta"], summary="Landing page")
-    def landing() -> dict[str, Any]:
+    @app.get("/", tags=["meta"], summary="Landing page", response_model=None)
+    def landing(
+        request: Request, response: Response, f: FormatQuery = None
+    ) -> dict[str, Any] | HTMLResponse:
+        response.headers["Vary"] = "Accept"
+        if wants_html(request):
+            return landing_page(request, app.state.pages, registry)
         return {
             "title": "dexlab",
             "description": "Manipulator kinematic-design service",

@@ -60,8 +60,11 @@ def _serve(args: argparse.Namespace) -> None:
                         format="%(asctime)s %(process)d %(name)s %(levelname)s %(message)s")
     # A client still holding a ``Prefer: wait`` open when the server stops is cut off
     # after this grace (its job is committed; it polls it later).
+    # X-Forwarded-* are applied by the app (service.ogc.forwarded), from the proxies in
+    # DEXLAB_FORWARDED_ALLOW_IPS: uvicorn's own handling would hide the proxy's address.
     uvicorn.run(create_app(settings), host=settings.host, port=settings.port,
-                log_level=settings.log_level.lower(), timeout_graceful_shutdown=10)
+                log_level=settings.log_level.lower(), timeout_graceful_shutdown=10,
+                proxy_headers=False)
 
 
 def _worker(args: argparse.Namespace) -> None:

@@ -4,14 +4,19 @@ from __future__ import annotations
 
 import logging
 import math
+from collections.abc import Awaitable, Callable
 from typing import Any
 
 from fastapi import FastAPI, Request
 from fastapi.exceptions import RequestValidationError
 from fastapi.responses import JSONResponse
 from starlette.exceptions import HTTPException as StarletteHTTPException
+from starlette.responses import Response
 
 from service.allow import allow_header, allowed_methods
+from service.ogc.execute_request import InvalidRequest
+from service.ogc.vocabulary import exception_type, is_ogc_path
+from service.pages.problem_page import as_page_if_asked
 from service.problems import PROBLEM_TYPES, problem_type_uri
 from worker.errors import (
     CostLimitExceeded,
@@ -36,6 +41,7 @@ log = logging.getLogger("dexlab.service")
 PROBLEM_JSON = "application/problem+json"
 
 _SLUGS: dict[type[DexlabError], str] = {
+    InvalidRequest: "invalid-request",
     InvalidInputs: "invalid-inputs",
     CostLimitExceeded: "cost-limit-exceeded",
     IdempotencyConflict: "idempotency-conflict",
@@ -70,6 +76,7 @@ def _retry_headers(exc: DexlabError, extra: dict[str, Any]) -> dict[str, str] | 
 
 _HTTP_SLUGS = {
     400: "malformed-request",
+    403: "forbidden",
     404: "not-found",
     405: "method-not-allowed",
     413: "request-too-large",
@@ -89,7 +96,8 @@ def problem_response(
     """A problem+json response of a known problem type."""
     default_status, default_title, _ = PROBLEM_TYPES.get(slug, PROBLEM_TYPES["internal-error"])
     body: dict[str, Any] = {
-        "type": problem_type_uri(slug),
+        # Under /ogc/, the exception types OGC API - Processes defines.
+        "type": exception_type(slug, instance) or problem_type_uri(slug),
         "title": title or default_title,
         "status": status or default_status,
         "detail": detail,
@@ -114,10 +122,27 @@ def _request_errors(exc: RequestValidationError) -> list[dict[str, Any]]:
     return errors
 
 
+def _page_if_asked(handler: Callable[[Request, Any], Awaitable[Response]]) -> Any:
+    """The handler, answering with the problem page when the client asked for HTML."""
+
+    async def negotiated(request: Request, exc: Any) -> Response:
+        return as_page_if_asked(request, await handler(request, exc))
+
+    return negotiated
+
+
+def _parameter_status(request: Request, exc: RequestValidationError) -> int | None:
+    """400 for a bad query, path or header parameter under /ogc/ (OGC's status for an
+    incorrect parameter value); None (the problem's own 422) otherwise."""
+    in_body = any(tuple(err.get("loc", ()))[:1] == ("body",) for err in exc.errors())
+    return 400 if is_ogc_path(request.url.path) and not in_body else None
+
+
 def install_error_handlers(app: FastAPI) -> None:
-    """Map every exception to a problem document."""
+    """Map every exception to a problem document (a page for a client asking for HTML)."""
 
     @app.exception_handler(DexlabError)
+    @_page_if_asked
     async def _dexlab(request: Request, exc: DexlabError) -> JSONResponse:
         slug = _slug(exc)
         extra: dict[str, Any] = dict(exc.extra)
@@ -142,6 +167,7 @@ def install_error_handlers(app: FastAPI) -> None:
         )
 
     @app.exception_handler(RequestValidationError)
+    @_page_if_asked
     async def _validation(request: Request, exc: RequestValidationError) -> JSONResponse:
         errors = _request_errors(exc)
         if any(e.get("type") == "json_invalid" for e in errors):
@@ -155,10 +181,12 @@ def install_error_handlers(app: FastAPI) -> None:
         if len(errors) > 1:
             detail += f" (and {len(errors) - 1} more problem(s))"
         return problem_response(
-            "invalid-request", detail=detail, instance=str(request.url.path), errors=errors
-        )
+            "invalid-request", detail=detail, instance=str(request.url.path), errors=errors,
+            status=_parameter_status(request, exc),
+        )  # fmt: skip
 
     @app.exception_handler(StarletteHTTPException)
+    @_page_if_asked
     async def _http(request: Request, exc: StarletteHTTPException) -> JSONResponse:
         slug = _HTTP_SLUGS.get(exc.status_code, "internal-error")
         headers = dict(exc.headers) if exc.headers else {}
@@ -173,6 +201,7 @@ def install_error_handlers(app: FastAPI) -> None:
         )
 
     @app.exception_handler(Exception)
+    @_page_if_asked
     async def _unexpected(request: Request, exc: Exception) -> JSONResponse:
         log.exception("unhandled error on %s", request.url.path)
         return problem_response(

@@ -18,6 +18,7 @@ from fastapi import FastAPI
 from fastapi.openapi.utils import get_openapi
 from pydantic.json_schema import models_json_schema
 
+from service.ogc.schemas import OGC_ROUTE_PROBLEMS, document_process_ids
 from service.problems import PROBLEM_TYPES
 from service.routes.process_operations import FAMILY_PAPERS, family_of
 from service.schemas import ROUTE_DOCUMENTS, document_schemas
@@ -59,21 +60,27 @@ PROBLEM_SCHEMA: dict[str, Any] = {
 #: The problem statuses of the known routes: (method, path) -> statuses.  500 (an
 #: unexpected error, always a problem document) is added to every operation.
 ROUTE_PROBLEMS: dict[tuple[str, str], tuple[int, ...]] = {
-    ("get", "/"): (),
+    ("get", "/"): (422,),
     ("get", "/problems/{slug}"): (404,),
     ("get", "/health/live"): (),
     ("get", "/health/ready"): (503,),
-    ("get", "/v1/processes"): (),
-    ("get", "/v1/processes/{process_id}"): (404,),
+    ("get", "/v1/processes"): (422,),
+    ("get", "/v1/processes/{process_id}"): (404, 422),
     ("post", "/v1/processes/{process_id}/execution"): (400, 404, 413, 422, 503, 507),
     ("get", "/v1/jobs"): (422, 503),
-    ("get", "/v1/jobs/{job_id}"): (404, 503),
+    ("get", "/v1/jobs/{job_id}"): (404, 422, 503),
+    ("get", "/v1/jobs/{job_id}/events"): (404, 503),
     ("delete", "/v1/jobs/{job_id}"): (404, 503),
     # A failed job's results answer its failure's problem (job-error, worker-lost,
     # time-limit-exceeded: 500; storage-full: 507; storage-error: 503).
-    ("get", "/v1/jobs/{job_id}/results"): (404, 410, 503, 507),
+    ("get", "/v1/jobs/{job_id}/results"): (404, 410, 422, 503, 507),
     ("get", "/v1/jobs/{job_id}/results/{name}"): (404, 410, 503, 507),
+    ("get", "/methods"): (),
+    ("get", "/methods/{slug}"): (404,),
 }
+
+#: A page, as the routes that negotiate (``?f=html``, ``Accept: text/html``) answer.
+HTML_PAGE: dict[str, Any] = {"schema": {"type": "string"}}
 
 #: What an artifact download can be (the process description lists each job's).
 ARTIFACT_MEDIA_TYPES = ("image/png", "image/svg+xml", "text/csv", "application/x-npz")
@@ -181,6 +188,25 @@ def _json_response(responses: dict[str, Any], status: str, ref: dict[str, Any]) 
     entry["content"] = {"application/json": {"schema": ref}}
 
 
+def _page_alternatives(document: dict[str, Any]) -> None:
+    """Pages beside JSON: a GET route with the ``f`` parameter answers 200 with a page
+    too, and any GET's problem is a page for a client that asks for HTML."""
+    for item in document.get("paths", {}).values():
+        operation = item.get("get")
+        if not isinstance(operation, dict):
+            continue
+        for parameter in operation.get("parameters", []):
+            if parameter.get("in") == "query" and parameter.get("name") == "f":
+                parameter["schema"] = {"type": "string", "enum": ["json", "html"]}
+                operation["responses"].setdefault("200", {"description": "OK"}).setdefault(
+                    "content", {}
+                )["text/html"] = HTML_PAGE
+        for status, response in operation["responses"].items():
+            content = response.get("content")
+            if status[:1] in "45" and isinstance(content, dict) and PROBLEM_JSON in content:
+                content["text/html"] = HTML_PAGE
+
+
 def _rewrite(
     document: dict[str, Any], known: dict[tuple[str, str], tuple[int, ...]]
 ) -> dict[str, Any]:
@@ -201,7 +227,7 @@ def _rewrite(
             responses.pop("422", None)  # FastAPI's validation shape: replaced below
             for status in (*statuses, 500):
                 responses[str(status)] = _problem_response(status)
-            if method == "post" and path.endswith("/execution"):
+            if method == "post" and path.endswith("/execution") and path.startswith("/v1/"):
                 responses["200"] = {
                     "description": "The result document: the job finished within the "
                     "`Prefer: wait=N` the request asked for (`Preference-Applied`).",
@@ -214,6 +240,7 @@ def _rewrite(
                 _json_response(responses, success, refs[model.__name__])
             if (method, path) == ("get", "/v1/jobs/{job_id}/results/{name}"):
                 _artifact_responses(responses)
+    _page_alternatives(document)
     return document
 
 
@@ -233,7 +260,8 @@ def install_openapi(app: FastAPI, registry: ProcessRegistry) -> None:
                 servers=app.servers,
             )
             document.setdefault("components", {}).setdefault("schemas", {})
-            known = {**ROUTE_PROBLEMS, **_process_bodies(document, registry)}
+            known = {**ROUTE_PROBLEMS, **OGC_ROUTE_PROBLEMS, **_process_bodies(document, registry)}
+            document_process_ids(document, registry.ids())
             app.openapi_schema = _rewrite(document, known)
         return app.openapi_schema
 

@@ -59,6 +59,11 @@ PROBLEM_TYPES: dict[str, tuple[int, str, str]] = {
     ),
     "not-ready": (503, "Not ready", "The store or the worker pool is not up."),
     "not-found": (404, "Not found", "No resource at this path."),
+    "forbidden": (
+        403, "Forbidden",
+        "The request is refused: a page's form posted from another site (the service's "
+        "own pages send a same-origin Origin or Sec-Fetch-Site).",
+    ),
     "method-not-allowed": (405, "Method not allowed", "This path does not accept this method."),
     "internal-error": (500, "Internal error", "An unexpected error; it was logged."),
 }

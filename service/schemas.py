@@ -71,12 +71,29 @@ class ArtifactLink(_Document):
     href: str
 
 
+class JobResult(BaseModel):
+    """A job's result: the members its process describes under ``outputs``, then its
+    notes.  ``paper_errata`` repeats the notes that set the request against the paper's
+    printed values (the errata of docs/methods/<page>.md), so pages can mark them."""
+
+    model_config = ConfigDict(extra="allow")
+
+    notes: list[str] = Field(
+        description="What a reader should know about this result, the paper's errata last."
+    )
+    paper_errata: list[str] = Field(
+        default_factory=list,
+        description="The notes (also in 'notes', in the same order) that correct the paper's "
+        "printed values for a request that is one of its examples; [] for other requests.",
+    )
+
+
 class ResultsDocument(_Document):
     """``GET /v1/jobs/{jobID}/results``: the result and a link to every artifact."""
 
     jobID: str
     processID: str
-    result: dict[str, Any]
+    result: JobResult
     artifacts: list[ArtifactLink]
     links: list[Link]
 

@@ -4,11 +4,12 @@ from __future__ import annotations
 
 from typing import Annotated, Any
 
-from fastapi import APIRouter, Header, Query, Response
-from fastapi.responses import StreamingResponse
+from fastapi import APIRouter, Header, Query, Request, Response
+from fastapi.responses import HTMLResponse, StreamingResponse
 
-from service.deps import StoreDep
+from service.deps import RegistryDep, StoreDep
 from service.documents import artifact_headers, results_document, status_document
+from service.pages import FormatQuery, Pages, PagesDep, views, wants_html
 from worker.contract import JobRecord, JobStatus
 from worker.errors import (
     InvalidInputs,
@@ -19,6 +20,7 @@ from worker.errors import (
     ResultNotReady,
     StorageError,
 )
+from worker.processes import ProcessRegistry
 from worker.store.base import JobStore
 
 __all__ = ["router"]
@@ -33,20 +35,30 @@ def _job(store: JobStore, job_id: str) -> JobRecord:
     return job
 
 
-@router.get("", summary="List jobs, newest first")
+@router.get("", summary="List jobs, newest first", response_model=None)
 def list_jobs(
+    request: Request,
+    response: Response,
     store: StoreDep,
+    registry: RegistryDep,
+    pages: PagesDep,
     limit: Annotated[int, Query(ge=1, le=1000)] = 20,
     cursor: Annotated[str | None, Query(max_length=200)] = None,
     status: Annotated[JobStatus | None, Query()] = None,
     process_id: Annotated[str | None, Query(alias="processID", max_length=200)] = None,
-) -> dict[str, Any]:
+    f: FormatQuery = None,
+) -> dict[str, Any] | HTMLResponse:
     try:
         page = store.list_jobs(limit=limit, cursor=cursor, status=status, process_id=process_id)
     except ValueError as exc:
         raise InvalidInputs(
             [{"field": "cursor", "message": str(exc), "type": "value_error"}],
         ) from exc
+    response.headers["Vary"] = "Accept"
+    if wants_html(request):
+        return views.job_list_page(
+            request, pages, registry, page, limit=limit, status=status, process_id=process_id
+        )
     links = [{"href": "/v1/jobs", "rel": "self", "type": "application/json"}]
     if page.next_cursor:
         query = f"limit={limit}&cursor={page.next_cursor}"
@@ -62,9 +74,28 @@ def list_jobs(
     }
 
 
-@router.get("/{job_id}", summary="A job's status")
-def get_job(job_id: str, store: StoreDep) -> dict[str, Any]:
-    return status_document(_job(store, job_id))
+@router.get("/{job_id}", summary="A job's status", response_model=None)
+def get_job(
+    job_id: str,
+    request: Request,
+    response: Response,
+    store: StoreDep,
+    registry: RegistryDep,
+    pages: PagesDep,
+    f: FormatQuery = None,
+) -> dict[str, Any] | HTMLResponse:
+    job = _job(store, job_id)
+    response.headers["Vary"] = "Accept"
+    if wants_html(request):
+        return _job_page(request, store, registry, pages, job)
+    return status_document(job)
+
+
+def _job_page(
+    request: Request, store: JobStore, registry: ProcessRegistry, pages: Pages, job: JobRecord
+) -> HTMLResponse:
+    result = store.get_result(job.job_id) if job.status is JobStatus.SUCCESSFUL else None
+    return views.job_page(request, pages, registry, job, result)
 
 
 @router.delete("/{job_id}", summary="Dismiss a job (stops a running attempt's process)")
@@ -98,9 +129,25 @@ def finished_document(store: JobStore, job: JobRecord) -> dict[str, Any]:
     return results_document(job, result)
 
 
-@router.get("/{job_id}/results", summary="The result document with links to every artifact")
-def get_results(job_id: str, store: StoreDep) -> dict[str, Any]:
-    return finished_document(store, _job(store, job_id))
+@router.get(
+    "/{job_id}/results",
+    summary="The result document with links to every artifact",
+    response_model=None,
+)
+def get_results(
+    job_id: str,
+    request: Request,
+    response: Response,
+    store: StoreDep,
+    registry: RegistryDep,
+    pages: PagesDep,
+    f: FormatQuery = None,
+) -> dict[str, Any] | HTMLResponse:
+    job = _job(store, job_id)
+    response.headers["Vary"] = "Accept"
+    if wants_html(request):  # the job's page shows its results (or why there are none)
+        return _job_page(request, store, registry, pages, job)
+    return finished_document(store, job)
 
 
 @router.get("/{job_id}/results/{name}", summary="Download one artifact (PNG, SVG, CSV, NPZ)")

@@ -2,26 +2,22 @@
 
 from __future__ import annotations
 
-import asyncio
 from typing import Annotated, Any
 
 from fastapi import APIRouter, Header, Request, Response
-from fastapi.responses import JSONResponse
+from fastapi.responses import HTMLResponse, JSONResponse
 from pydantic import BaseModel, ConfigDict, Field
 from starlette.concurrency import run_in_threadpool
 
 from service.deps import DispatcherDep, RegistryDep, SettingsDep, StoreDep
 from service.documents import job_href, status_document
+from service.execution import submit_job, wait_while_connected
 from service.job_watcher import JobWatcher
+from service.pages import FormatQuery, PagesDep, views, wants_html
 from service.preferences import requested_wait
 from service.routes.jobs import finished_document
-from worker.contract import JobRecord
-from worker.dispatch import Dispatcher
 from worker.errors import NoSuchJob, NoSuchProcess
-from worker.processes import ProcessRegistry
-from worker.settings import WorkerSettings
 from worker.store.base import JobStore
-from worker.submission import submit, synchronous_allowed
 
 __all__ = ["router"]
 
@@ -36,8 +32,17 @@ class ExecuteRequest(BaseModel):
     inputs: dict[str, Any] = Field(..., description="The process inputs (see its schema).")
 
 
-@router.get("", summary="List the processes")
-def list_processes(registry: RegistryDep) -> dict[str, Any]:
+@router.get("", summary="List the processes", response_model=None)
+def list_processes(
+    request: Request,
+    response: Response,
+    registry: RegistryDep,
+    pages: PagesDep,
+    f: FormatQuery = None,
+) -> dict[str, Any] | HTMLResponse:
+    response.headers["Vary"] = "Accept"
+    if wants_html(request):
+        return views.process_list_page(request, pages, registry)
     return {
         "processes": [
             {
@@ -52,11 +57,25 @@ def list_processes(registry: RegistryDep) -> dict[str, Any]:
     }
 
 
-@router.get("/{process_id}", summary="Describe a process: inputs schema, examples, limits")
-def describe_process(process_id: str, registry: RegistryDep) -> dict[str, Any]:
+@router.get(
+    "/{process_id}",
+    summary="Describe a process: inputs schema, examples, limits",
+    response_model=None,
+)
+def describe_process(
+    process_id: str,
+    request: Request,
+    response: Response,
+    registry: RegistryDep,
+    pages: PagesDep,
+    f: FormatQuery = None,
+) -> dict[str, Any] | HTMLResponse:
     definition = registry.get(process_id)
     if definition is None:
         raise NoSuchProcess(f"No process {process_id!r}; available: {', '.join(registry.ids())}.")
+    response.headers["Vary"] = "Accept"
+    if wants_html(request):
+        return views.process_page(request, pages, registry, definition)
     doc = definition.describe()
     doc["links"] = [
         {
@@ -66,6 +85,15 @@ def describe_process(process_id: str, registry: RegistryDep) -> dict[str, Any]:
             "title": "POST to run it",
         },
     ]
+    if definition.method_doc:
+        doc["links"].append(
+            {
+                "href": f"/methods/{definition.method_doc}",
+                "rel": "describedby",
+                "type": "text/html",
+                "title": "The method, its equations and the paper's errata",
+            }
+        )
     return doc
 
 
@@ -96,7 +124,7 @@ async def execute(
     done."""
     wait = requested_wait(prefer)
     job, created, synchronous = await run_in_threadpool(
-        _submit,
+        submit_job,
         store,
         registry,
         settings,
@@ -111,7 +139,7 @@ async def execute(
         response.headers["Idempotent-Replayed"] = "true"
     if wait is not None and synchronous:
         watcher: JobWatcher = request.app.state.watcher
-        if await _wait_while_connected(request, watcher, job.job_id, wait):
+        if await wait_while_connected(request, watcher, job.job_id, wait):
             document = await run_in_threadpool(_finished_document, store, job.job_id)
             headers = {
                 "Location": response.headers["Location"],
@@ -119,46 +147,6 @@ async def execute(
             }
             return JSONResponse(document, status_code=200, headers=headers)
     return status_document(job)
-
-
-async def _wait_while_connected(
-    request: Request, watcher: JobWatcher, job_id: str, wait_s: float
-) -> bool:
-    """Wait for the job as the watcher does, but stop as soon as the client goes away
-    (an abandoned wait must not keep the request, nor the server's shutdown, open)."""
-    finished = asyncio.ensure_future(watcher.wait(job_id, wait_s))
-    gone = asyncio.ensure_future(_disconnected(request))
-    try:
-        await asyncio.wait({finished, gone}, return_when=asyncio.FIRST_COMPLETED)
-    finally:
-        for task in (finished, gone):
-            task.cancel()
-        await asyncio.gather(finished, gone, return_exceptions=True)
-    return finished.done() and not finished.cancelled() and finished.result()
-
-
-async def _disconnected(request: Request) -> None:
-    """Return once the client has closed the connection (the body is already read)."""
-    while (await request.receive())["type"] != "http.disconnect":
-        pass
-
-
-def _submit(
-    store: JobStore,
-    registry: ProcessRegistry,
-    settings: WorkerSettings,
-    process_id: str,
-    inputs: dict[str, Any],
-    idempotency_key: str | None,
-    dispatcher: Dispatcher,
-    wants_sync: bool,
-) -> tuple[JobRecord, bool, bool]:
-    """Submit (blocking store work, run in the threadpool); ``(job, created, sync)``."""
-    job, created = submit(
-        store, registry, settings, process_id, inputs, idempotency_key, dispatcher
-    )
-    synchronous = wants_sync and synchronous_allowed(registry, process_id, inputs)
-    return job, created, synchronous
 
 
 def _finished_document(store: JobStore, job_id: str) -> dict[str, Any]:

@@ -3,9 +3,11 @@
 from __future__ import annotations
 
 from worker.store.base import (
+    CallbackClaim,
     Claim,
     ClaimAttempt,
     HeartbeatAck,
+    JobFilter,
     JobPage,
     JobStore,
     NewJob,
@@ -14,9 +16,11 @@ from worker.store.base import (
 )
 
 __all__ = [
+    "CallbackClaim",
     "Claim",
     "ClaimAttempt",
     "HeartbeatAck",
+    "JobFilter",
     "JobPage",
     "JobStore",
     "NewJob",

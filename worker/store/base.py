@@ -9,14 +9,17 @@ from __future__ import annotations
 
 from collections.abc import Iterator, Mapping, Sequence
 from dataclasses import dataclass
+from datetime import datetime
 from typing import Any, Protocol
 
 from worker.contract import Artifact, ArtifactInfo, JobRecord, JobStatus
 
 __all__ = [
+    "CallbackClaim",
     "Claim",
     "ClaimAttempt",
     "HeartbeatAck",
+    "JobFilter",
     "JobPage",
     "JobStore",
     "NewJob",
@@ -76,6 +79,35 @@ class JobPage:
 
 
 @dataclass(frozen=True)
+class JobFilter:
+    """Which jobs a listing selects; every criterion given must hold (None: any).
+
+    ``created_from`` and ``created_to`` bound the creation time, both inclusive, at the
+    microsecond the documents show.  A duration is ``finished - started``, or ``now -
+    started`` while running; a duration bound selects only jobs that have started and
+    are not back in the queue (accepted jobs have no duration)."""
+
+    statuses: frozenset[JobStatus] | None = None
+    process_ids: frozenset[str] | None = None
+    created_from: datetime | None = None
+    created_to: datetime | None = None
+    min_duration_s: float | None = None
+    max_duration_s: float | None = None
+
+
+@dataclass(frozen=True)
+class CallbackClaim:
+    """A callback one sender now owns: POST ``event``'s document to ``uri``, then
+    report the outcome with ``token``.  ``attempt`` counts from 1."""
+
+    job_id: str
+    event: str
+    uri: str
+    token: str
+    attempt: int
+
+
+@dataclass(frozen=True)
 class StoredArtifact:
     """A committed artifact: its metadata, the attempt whose bytes it is, and the
     SHA-256 of those bytes (hex; the HTTP ETag)."""
@@ -122,7 +154,35 @@ class JobStore(Protocol):
         cursor: str | None = None,
         status: JobStatus | None = None,
         process_id: str | None = None,
-    ) -> JobPage: ...
+        where: JobFilter | None = None,
+    ) -> JobPage:
+        """Jobs, newest first, ``limit`` at a time (``next_cursor`` continues); ``status``,
+        ``process_id`` and ``where`` narrow the selection."""
+
+    def set_request_options(
+        self, job_id: str, presentation: Mapping[str, Any], subscriber: Mapping[str, Any] | None
+    ) -> None:
+        """Keep how the client asked for the job's results (``presentation``) and where
+        to send callbacks (``subscriber``), with the job."""
+
+    def request_options(
+        self, job_id: str
+    ) -> tuple[Mapping[str, Any] | None, Mapping[str, Any] | None]:
+        """``(presentation, subscriber)`` kept with the job (None: none kept)."""
+
+    def claim_callbacks(self, lease_s: float, max_attempts: int, limit: int) -> list[CallbackClaim]:
+        """Record the callbacks that became due (the job started, succeeded or failed) and
+        claim up to ``limit`` of those not yet delivered, not claimed by another sender
+        under a live lease, and tried fewer than ``max_attempts`` times."""
+
+    def callback_log(self, job_id: str) -> list[dict[str, Any]]:
+        """The job's due callbacks: event, uri, attempts, delivered / gave_up (epoch s)."""
+
+    def finish_callback(
+        self, claim: CallbackClaim, delivered: bool, retry_after_s: float, max_attempts: int
+    ) -> bool:
+        """Record a send's outcome: delivered, or retry after ``retry_after_s`` (after
+        ``max_attempts`` tries, given up).  False if the claim was lost meanwhile."""
 
     def claim_next(self, worker_id: str, lease_s: float) -> Claim | None:
         """Requeue or fail jobs whose lease expired, then claim the oldest accepted job."""

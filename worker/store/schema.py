@@ -97,4 +97,31 @@ MIGRATIONS: tuple[tuple[int, tuple[str, ...]], ...] = (
             )""",
         ),
     ),
+    (
+        4,
+        # OGC API - Processes: how the client asked for the results (response form,
+        # outputs, transmission modes) and where to send callbacks, kept with the job;
+        # `callbacks_open` marks jobs whose callbacks may still become due.  Each due
+        # callback is a row, claimed by one sender at a time under a lease.
+        (
+            "ALTER TABLE jobs ADD COLUMN presentation TEXT",
+            "ALTER TABLE jobs ADD COLUMN subscriber TEXT",
+            "ALTER TABLE jobs ADD COLUMN callbacks_open INTEGER NOT NULL DEFAULT 0",
+            "CREATE INDEX jobs_callbacks_open ON jobs (callbacks_open, seq)",
+            "CREATE INDEX jobs_created ON jobs (created)",
+            """CREATE TABLE callbacks (
+                job_id TEXT NOT NULL REFERENCES jobs (job_id) ON DELETE CASCADE,
+                event TEXT NOT NULL,
+                uri TEXT NOT NULL,
+                attempts INTEGER NOT NULL DEFAULT 0,
+                next_try {float} NOT NULL,
+                claim_token TEXT,
+                claim_until {float},
+                delivered {float},
+                gave_up {float},
+                PRIMARY KEY (job_id, event)
+            )""",
+            "CREATE INDEX callbacks_due ON callbacks (next_try)",
+        ),
+    ),
 )

@@ -25,8 +25,10 @@ from typing import Any, ClassVar
 from worker.contract import ArtifactInfo, JobRecord, JobStatus
 from worker.errors import IdempotencyConflict
 from worker.store.artifact_index import ArtifactIndex
-from worker.store.base import JobPage, NewJob
+from worker.store.base import JobFilter, JobPage, NewJob
 from worker.store.bookkeeping import Bookkeeping
+from worker.store.callbacks import Callbacks
+from worker.store.job_listing import filter_clauses
 from worker.store.leases import Leases
 from worker.store.retry import Fault, retrying
 from worker.store.schema import MIGRATIONS
@@ -67,7 +69,7 @@ def decode_cursor(cursor: str) -> int:
         ) from exc
 
 
-class SqlJobStore(Leases, ArtifactIndex, Bookkeeping):
+class SqlJobStore(Leases, ArtifactIndex, Bookkeeping, Callbacks):
     """A :class:`worker.store.base.JobStore` over a DB-API connection."""
 
     #: Appended to a SELECT whose rows the transaction goes on to change.
@@ -243,9 +245,12 @@ class SqlJobStore(Leases, ArtifactIndex, Bookkeeping):
         cursor: str | None = None,
         status: JobStatus | None = None,
         process_id: str | None = None,
+        where: JobFilter | None = None,
     ) -> JobPage:
         clauses: list[str] = []
         params: list[Any] = []
+        if where is not None:
+            clauses, params = filter_clauses(where, time.time())
         if cursor is not None:
             clauses.append("seq < ?")
             params.append(decode_cursor(cursor))
@@ -255,10 +260,10 @@ class SqlJobStore(Leases, ArtifactIndex, Bookkeeping):
         if process_id is not None:
             clauses.append("process_id = ?")
             params.append(process_id)
-        where = f"WHERE {' AND '.join(clauses)}" if clauses else ""
+        condition = f"WHERE {' AND '.join(clauses)}" if clauses else ""
         conn = self._conn()
         rows = self._all(
-            conn, f"SELECT * FROM jobs {where} ORDER BY seq DESC LIMIT ?", (*params, limit + 1)
+            conn, f"SELECT * FROM jobs {condition} ORDER BY seq DESC LIMIT ?", (*params, limit + 1)
         )
         more = len(rows) > limit
         rows = rows[:limit]

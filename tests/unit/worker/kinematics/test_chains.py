@@ -1,4 +1,5 @@
-"""P, Q, mobility and chain validation (METHODS.md §4): the paper's figures and properties."""
+"""P, Q, mobility and chain validation (docs/methods/chains.md): the paper's figures and
+properties."""
 
 from __future__ import annotations
 
@@ -37,7 +38,7 @@ FIG_4B = c.Chain(
 )
 
 
-# -- the paper's numbers (METHODS.md §4, errata applied) -----------------------------
+# -- the paper's numbers (docs/methods/chains.md, errata applied) -----------------------------
 
 
 @pytest.mark.parametrize(
@@ -50,14 +51,14 @@ def test_fig_2_products(lengths: tuple[float, ...], p: float) -> None:
 
 
 def test_fig_2d_deviations_and_q() -> None:
-    # METHODS.md: 36, 120, 20, 136 (the paper's 126 is a typo); signs by eps_i's formula
+    # docs/methods/chains.md: 36, 120, 20, 136 (the paper's 126 is a typo); signs by eps_i's formula
     assert c.adjacent_products([18, 15, 10, 17]).tolist() == [270, 150, 170, 306]
     assert c.loop_deviations([18, 15, 10, 17]).tolist() == [36, 120, -20, -136]
     assert c.loop_q([18, 15, 10, 17]) == 36**2 + 120**2 + 20**2 + 136**2 == 34592
 
 
 def test_fig_2e_deviations_and_q() -> None:
-    # METHODS.md: 90, 10, 85, 15 (the paper's 75 is an "opposite product")
+    # docs/methods/chains.md: 90, 10, 85, 15 (the paper's 75 is an "opposite product")
     assert c.loop_deviations([18, 10, 17, 15]).tolist() == [90, 10, -85, -15]
     assert c.loop_q([18, 10, 17, 15]) == 15650
     assert c.loop_q([18, 10, 17, 15]) < c.loop_q([18, 15, 10, 17])  # 2e more parallel

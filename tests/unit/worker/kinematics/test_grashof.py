@@ -1,4 +1,5 @@
-"""Grashof's criterion (eqs 6-7) and the virtual four-bar of a 3R arm (METHODS.md §1)."""
+"""Grashof's criterion (eqs 6-7) and the virtual four-bar of a 3R arm
+(docs/methods/planar-serial.md)."""
 
 from __future__ import annotations
 
@@ -46,7 +47,7 @@ def test_four_bar_classification(lengths, is_grashof, shortest, longest) -> None
      (21.0, True), (21.5, False), (37.0, False)],
 )  # fmt: skip
 def test_example1_end_effector_rotatability_follows_the_bands(distance, rotatable) -> None:
-    # METHODS.md §1: full dexterity on [0, 7] ∪ [9, 21] for (15, 14, 8)
+    # docs/methods/planar-serial.md: full dexterity on [0, 7] ∪ [9, 21] for (15, 14, 8)
     assert end_effector_fully_rotatable(EX1_LINKS, distance) is rotatable
 
 

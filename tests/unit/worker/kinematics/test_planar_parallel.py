@@ -1,6 +1,6 @@
 """2-DOF planar parallel robots, point kinematics: the paper's closed forms and numbers as
-corrected by METHODS.md §2, and properties (eq 7 vs SVD, J vs finite differences, IK
-closure) over all three actuation types of Fig. 1."""
+corrected by docs/methods/planar-parallel.md, and properties (eq 7 vs SVD, J vs finite
+differences, IK closure) over all three actuation types of Fig. 1."""
 
 from __future__ import annotations
 
@@ -68,7 +68,8 @@ def test_isotropic_point_for_every_delta(delta: float) -> None:
 
 
 def test_eq12_offsets() -> None:
-    # METHODS.md: the paper prints e = 0.6001 for delta = 1.85; eq (12) gives 0.6010
+    # docs/methods/planar-parallel.md: the paper prints e = 0.6001 for delta = 1.85; eq (12) gives
+    # 0.6010
     assert isotropic_architecture(1.7).e == pytest.approx(0.4950, abs=5e-5)
     assert isotropic_architecture(1.85).e == pytest.approx(0.6010, abs=5e-5)
     assert abs(isotropic_architecture(1.85).e - 0.6001) > 5e-4

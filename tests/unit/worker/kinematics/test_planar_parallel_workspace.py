@@ -1,6 +1,7 @@
 """2-DOF planar parallel robots, the global step: W_kappa0, the largest centred rectangle
-W_lambda, its mean 1/kappa and the delta sweep. Table I as corrected by METHODS.md §2,
-closed forms, and exact-vs-brute-force checks (inside, maximal)."""
+W_lambda, its mean 1/kappa and the delta sweep. Table I as corrected by
+docs/methods/planar-parallel.md, closed forms, and exact-vs-brute-force checks (inside,
+maximal)."""
 
 from __future__ import annotations
 
@@ -172,7 +173,7 @@ def test_range_of_the_mean_over_delta(
     # §IV on Fig. 8: the mean "varies slightly between 0.74 and 0.80" (a) and "between 0.77
     # and 0.83" (b). On the 101² mesh (ends re-computed by an independent brute force) the
     # 35° range rounds to the paper's; the 30° one does not (the paper's means match a 21²
-    # mesh, METHODS.md §2), and the job notes it.
+    # mesh, docs/methods/planar-parallel.md), and the job notes it.
     means = np.array([row.mean_inverse_condition for row in sweep(limit).rows])
     for index, (value, delta) in ((int(np.argmin(means)), low), (int(np.argmax(means)), high)):
         assert means[index] == pytest.approx(value, abs=PRINTED)

@@ -1,4 +1,4 @@
-"""Three-link planar arms: the paper's numbers as corrected by METHODS.md §1, closed
+"""Three-link planar arms: the paper's numbers as corrected by docs/methods/planar-serial.md, closed
 forms, and properties (exact vs brute force, vectorised vs per-point reference)."""
 
 from __future__ import annotations
@@ -106,7 +106,8 @@ def test_example1_case2_full_dexterity_only_on_the_central_disk() -> None:
 
 
 def test_fully_dexterous_area_fractions_are_of_the_reachable_annulus() -> None:
-    # METHODS.md quotes 0.298758 (Case 1) and 0.035793 (Case 2) without a denominator.
+    # docs/methods/planar-serial.md quotes 0.298758 (Case 1) and 0.035793 (Case 2) without a
+    # denominator.
     # They are fractions of the reachable annulus (here the disk r <= 37, inner radius 0).
     fractions = []
     for links in (EX1_LINKS, EX1_SWAPPED):
@@ -137,7 +138,8 @@ def test_example1_case3_task_points(name: str, expected: float) -> None:
 
 
 def test_theta2_limit_raises_the_wrist_inner_radius() -> None:
-    # METHODS.md: |th2| <= 150 deg moves the wrist's inner radius from |l1 - l2| = 1 to
+    # docs/methods/planar-serial.md: |th2| <= 150 deg moves the wrist's inner radius from |l1 - l2|
+    # = 1 to
     # 7.5677, so with only th2 limited d_z is the closed form with that inner radius.
     l1, l2, l3 = EX1_LINKS
     inner = math.sqrt(l1 * l1 + l2 * l2 + 2 * l1 * l2 * math.cos(math.radians(150)))
@@ -188,7 +190,8 @@ def test_example2_case3_task_points() -> None:
 
 
 def test_d_max_exceeds_l1_in_both_examples() -> None:
-    # METHODS.md errata: the paper's "at d = d_max, l1 > l2 > d > l3" is false in both
+    # docs/methods/planar-serial.md errata: the paper's "at d = d_max, l1 > l2 > d > l3" is false in
+    # both
     ex1 = polynomial_distance_range(EX1_CUBIC, 14.0, 8.0)
     ex2 = points_distance_range(list(EX2_TASK.values()))
     for d_max, l3 in ((ex1.d_max, 8.0), (math.ceil(ex1.d_max), 8.0), (ex2.d_max, 15.0)):

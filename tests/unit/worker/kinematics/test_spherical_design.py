@@ -1,4 +1,4 @@
-"""SPM design space (eqs 14-19) on the continuous workspace (METHODS.md §3)."""
+"""SPM design space (eqs 14-19) on the continuous workspace (docs/methods/spherical-parallel.md)."""
 
 from __future__ import annotations
 

@@ -1,5 +1,6 @@
-"""SPM conditioning indices: the paper's numbers as corrected by METHODS.md §3, the exact
-symmetries as properties, and vectorised vs the per-orientation reference loop."""
+"""SPM conditioning indices: the paper's numbers as corrected by
+docs/methods/spherical-parallel.md, the exact symmetries as properties, and vectorised
+vs the per-orientation reference loop."""
 
 from __future__ import annotations
 

@@ -1,4 +1,4 @@
-"""SPM kinematics (METHODS.md §3): axes, inverse kinematics, Jacobian, kappa.
+"""SPM kinematics (docs/methods/spherical-parallel.md): axes, inverse kinematics, Jacobian, kappa.
 
 Closed-form checks, hypothesis properties (closure, branch, J vs central differences,
 kappa >= 1) and the two kinds of singularity."""
@@ -169,7 +169,8 @@ def test_type_ii_singularity_gives_exactly_zero() -> None:
 @pytest.mark.parametrize("offset", [90.0, 210.0, 330.0, 30.0])
 def test_table_1_optimum_meets_a_leg_singularity_on_the_workspace_boundary(offset: float) -> None:
     # (60, 90, 90) at tilt 60 deg, psi3 - psi1 = 90 (or 30) mod 120: a leg folds (b_i = 0,
-    # type I) while det A stays ~0.80 — METHODS.md calls it "leg-folding"; 1/kappa = 0.
+    # type I) while det A stays ~0.80 — docs/methods/spherical-parallel.md calls it "leg-folding";
+    # 1/kappa = 0.
     design = SpmDesign.from_degrees(60.0, 90.0, 90.0)
     psi = np.radians([17.0, 60.0, 17.0 + offset])
     theta, real = inverse_kinematics(design, psi)

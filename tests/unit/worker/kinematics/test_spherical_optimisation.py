@@ -1,5 +1,6 @@
-"""SPM optimum design (eqs 28-30): Tables 1-3 as corrected by METHODS.md §3, twins,
-determinism, constraints, and failures as data. Few starts keep the suite fast."""
+"""SPM optimum design (eqs 28-30): Tables 1-3 as corrected by
+docs/methods/spherical-parallel.md, twins, determinism, constraints, and failures as
+data. Few starts keep the suite fast."""
 
 from __future__ import annotations
 

@@ -1,4 +1,4 @@
-"""SPM workspaces and their samples (METHODS.md §3, "Default sampling")."""
+"""SPM workspaces and their samples (docs/methods/spherical-parallel.md, "Default sampling")."""
 
 from __future__ import annotations
 

@@ -23,7 +23,8 @@ EX2_TASK = [(16, 19), (18, 0), (-8, -25), (-15, 11), (-10, 16), (20, -21), (-7, 
 
 @pytest.mark.parametrize(("x_start", "x_end"), [(14.0, 8.0), (8.0, 14.0)])
 def test_example1_cubic_distance_range(x_start: float, x_end: float) -> None:
-    # METHODS.md errata: 10.3923 at x = 10.2044 and 19.7673 at x = 14 (paper: 10 and 20)
+    # docs/methods/planar-serial.md errata: 10.3923 at x = 10.2044 and 19.7673 at x = 14 (paper: 10
+    # and 20)
     span = polynomial_distance_range(EX1_CUBIC, x_start, x_end)
     assert span.d_min == pytest.approx(10.3923, abs=5e-5)
     assert span.at_min[0] == pytest.approx(10.2044, abs=5e-5)
@@ -41,7 +42,7 @@ def test_example1_cubic_range_matches_dense_sampling() -> None:
 
 
 def test_example2_task_points() -> None:
-    # METHODS.md errata: min 18 at B, max 29 at F (the paper swaps min and max)
+    # docs/methods/planar-serial.md errata: min 18 at B, max 29 at F (the paper swaps min and max)
     assert points_distance_range(EX2_TASK) == DistanceRange(18.0, 29.0, (18.0, 0.0), (20.0, -21.0))
 
 

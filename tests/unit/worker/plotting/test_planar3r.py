@@ -20,7 +20,8 @@ from worker.plotting import planar3r as p
 from worker.plotting.render import RASTER_DPI, figure_artifacts
 
 # A made-up arm: links (8, 6, 4) give regions at d = 4, 10, 18 and full dexterity on
-# [0, 2] and [6, 10] (METHODS.md §1).  d_z is a simple radial formula, NaN beyond reach.
+# [0, 2] and [6, 10] (docs/methods/planar-serial.md).  d_z is a simple radial formula, NaN beyond
+# reach.
 LINKS = (8.0, 6.0, 4.0)
 RADII = (4.0, 10.0, 18.0)
 BANDS = ((0.0, 2.0), (6.0, 10.0))

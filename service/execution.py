@@ -1,0 +1,67 @@
+"""Submitting a job and waiting for it, shared by the native and the OGC execute routes.
+
+A submit is blocking store work (run it in the threadpool); a synchronous answer then
+waits for the job without holding a thread: the app's :class:`JobWatcher` wakes the
+request when the job is done, and the wait ends as soon as the client goes away.
+"""
+
+from __future__ import annotations
+
+import asyncio
+from collections.abc import Mapping
+from typing import Any
+
+from fastapi import Request
+
+from service.job_watcher import JobWatcher
+from worker.contract import JobRecord
+from worker.dispatch import Dispatcher
+from worker.processes import ProcessRegistry
+from worker.settings import WorkerSettings
+from worker.store.base import JobStore
+from worker.submission import submit, synchronous_allowed
+
+__all__ = ["submit_job", "wait_while_connected"]
+
+
+def submit_job(
+    store: JobStore,
+    registry: ProcessRegistry,
+    settings: WorkerSettings,
+    process_id: str,
+    inputs: Mapping[str, Any],
+    idempotency_key: str | None,
+    dispatcher: Dispatcher,
+    wants_sync: bool,
+) -> tuple[JobRecord, bool, bool]:
+    """Submit (blocking store work, run in the threadpool); ``(job, created, sync)``:
+    ``sync`` when the client asked for a synchronous answer and the process allows one
+    for these inputs (its ``sync_cost_limit``)."""
+    job, created = submit(
+        store, registry, settings, process_id, inputs, idempotency_key, dispatcher
+    )
+    synchronous = wants_sync and synchronous_allowed(registry, process_id, inputs)
+    return job, created, synchronous
+
+
+async def wait_while_connected(
+    request: Request, watcher: JobWatcher, job_id: str, wait_s: float
+) -> bool:
+    """Wait for the job as the watcher does, but stop as soon as the client goes away
+    (an abandoned wait must not keep the request, nor the server's shutdown, open).
+    True once the job is finished."""
+    finished = asyncio.ensure_future(watcher.wait(job_id, wait_s))
+    gone = asyncio.ensure_future(_disconnected(request))
+    try:
+        await asyncio.wait({finished, gone}, return_when=asyncio.FIRST_COMPLETED)
+    finally:
+        for task in (finished, gone):
+            task.cancel()
+        await asyncio.gather(finished, gone, return_exceptions=True)
+    return finished.done() and not finished.cancelled() and finished.result()
+
+
+async def _disconnected(request: Request) -> None:
+    """Return once the client has closed the connection (the body is already read)."""
+    while (await request.receive())["type"] != "http.disconnect":
+        pass

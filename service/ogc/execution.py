@@ -1,0 +1,132 @@
+"""Running an OGC execute request: submit, keep its options, answer in the negotiated
+mode; and reading a finished job's results the way its request asked."""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from dataclasses import dataclass
+from typing import Any
+
+from starlette.responses import Response
+
+from service.config import ServiceSettings
+from service.execution import submit_job
+from service.ogc.execute_request import (
+    OgcExecuteRequest,
+    Presentation,
+    presentation_of,
+    resolve_inputs,
+    subscriber_of,
+)
+from service.ogc.outbound import OutboundPolicy
+from service.ogc.outputs import process_outputs
+from service.ogc.results import results_response, select_outputs
+from service.ogc.urls import PublicUrls
+from worker.contract import JobRecord, JobStatus
+from worker.dispatch import Dispatcher
+from worker.errors import JobFailed, NoSuchJob, NoSuchProcess, ResultNotReady
+from worker.processes import ProcessDefinition, ProcessRegistry
+from worker.store.base import JobStore
+
+__all__ = [
+    "Submitted",
+    "definition_of",
+    "finished_job",
+    "job_results",
+    "outbound_policy",
+    "submit_execute",
+]
+
+
+def outbound_policy(settings: ServiceSettings) -> OutboundPolicy:
+    return OutboundPolicy.from_setting(settings.outbound_allow_hosts, settings.outbound_timeout_s)
+
+
+def definition_of(registry: ProcessRegistry, process_id: str) -> ProcessDefinition:
+    definition = registry.get(process_id)
+    if definition is None:
+        raise NoSuchProcess(f"No process {process_id!r}; available: {', '.join(registry.ids())}.")
+    return definition
+
+
+@dataclass(frozen=True)
+class Submitted:
+    """A submitted execute request: the job, whether it is new, whether it may be
+    answered synchronously, and how its results are presented."""
+
+    job: JobRecord
+    created: bool
+    can_run_sync: bool
+    presentation: Presentation
+
+
+def submit_execute(
+    store: JobStore,
+    registry: ProcessRegistry,
+    settings: ServiceSettings,
+    dispatcher: Dispatcher,
+    process_id: str,
+    body: OgcExecuteRequest,
+    idempotency_key: str | None,
+    wants_sync: bool,
+    base_url: str,
+) -> Submitted:
+    """Check the request, commit the job, keep its options (blocking: threadpool);
+    ``base_url`` is where callbacks' links point.
+
+    A synchronous answer is possible when the process allows it for these inputs and
+    a worker is up to run the job (else the wait could only time out)."""
+    definition = definition_of(registry, process_id)
+    presentation = presentation_of(body, process_outputs(definition))
+    policy = outbound_policy(settings)
+    subscriber = subscriber_of(body, policy)
+    inputs = resolve_inputs(
+        body.inputs, lambda href: policy.fetch_json(href, settings.max_body_bytes)
+    )
+    job, created, sync = submit_job(
+        store, registry, settings, process_id, inputs, idempotency_key, dispatcher, wants_sync
+    )
+    if created:
+        options = {**presentation.to_json(), "base": base_url}
+        store.set_request_options(job.job_id, options, subscriber)
+    if sync:
+        sync = bool(store.live_workers(within_s=3 * settings.heartbeat_seconds + 1.0))
+    return Submitted(job, created, sync, presentation)
+
+
+def finished_job(store: JobStore, job_id: str) -> tuple[JobRecord, Mapping[str, Any]]:
+    """A successful job and its result; otherwise the exception that says why there
+    are none (failed: the failure; dismissed: no such job any more; else not ready)."""
+    job = store.get_job(job_id)
+    if job is None:
+        raise NoSuchJob(f"No job {job_id!r}.")
+    if job.status is JobStatus.FAILED:
+        raise JobFailed(jobID=job.job_id, error=dict(job.error or {}))
+    if job.status is not JobStatus.DISMISSED and job.status is not JobStatus.SUCCESSFUL:
+        raise ResultNotReady(
+            f"Job {job_id} is {job.status.value} ({round(job.progress)}%); its results are "
+            "not ready."
+        )
+    result = store.get_result(job_id) if job.status is JobStatus.SUCCESSFUL else None
+    if result is None:
+        raise NoSuchJob(f"Job {job_id} was dismissed; its results were deleted.")
+    return job, result
+
+
+def job_results(
+    store: JobStore,
+    registry: ProcessRegistry,
+    job_id: str,
+    urls: PublicUrls,
+    presentation: Presentation | None = None,
+    headers: Mapping[str, str] | None = None,
+) -> Response:
+    """A finished job's results, presented as ``presentation`` says (default: as the
+    request that created the job asked)."""
+    job, result = finished_job(store, job_id)
+    if presentation is None:
+        presentation = Presentation.from_json(store.request_options(job_id)[0])
+    definition = registry.get(job.process_id)
+    outputs = process_outputs(definition) if definition is not None else {}
+    selected = select_outputs(job, result, outputs, presentation, store)
+    return results_response(job, selected, presentation, urls, store, headers)

@@ -1,0 +1,78 @@
+"""Status information (statusInfo.yaml) and job lists (jobList.yaml) of the façade."""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from datetime import datetime
+from typing import Any
+
+from service.ogc.urls import PublicUrls
+from service.ogc.vocabulary import JSON, REL_EXCEPTIONS, REL_RESULTS
+from worker.contract import JobRecord, JobStatus
+
+__all__ = ["job_list", "status_info"]
+
+
+def _iso(value: datetime) -> str:
+    return value.isoformat().replace("+00:00", "Z")
+
+
+def status_info(job: JobRecord, urls: PublicUrls) -> dict[str, Any]:
+    """Where a job is: status, progress, the times known so far, and links to itself,
+    the job list, its process and (when finished) its results or its exception."""
+    href = urls.job(job.job_id)
+    links = [
+        {"href": href, "rel": "self", "type": JSON, "title": "this status information"},
+        {"href": f"{urls.ogc}/jobs", "rel": "up", "type": JSON, "title": "the job list"},
+        {
+            "href": urls.process(job.process_id),
+            "rel": "describedby",
+            "type": JSON,
+            "title": "the process description",
+        },
+    ]
+    if job.status is JobStatus.SUCCESSFUL:
+        links.append(
+            {
+                "href": urls.results(job.job_id),
+                "rel": REL_RESULTS,
+                "type": JSON,
+                "title": "the job's results",
+            }
+        )
+    elif job.status is JobStatus.FAILED:
+        links.append(
+            {
+                "href": urls.results(job.job_id),
+                "rel": REL_EXCEPTIONS,
+                "type": "application/problem+json",
+                "title": "why the job failed",
+            }
+        )
+    document: dict[str, Any] = {
+        "processID": job.process_id,
+        "type": "process",
+        "jobID": job.job_id,
+        "status": job.status.value,
+        "message": job.message,
+        "progress": max(0, min(100, round(job.progress))),
+        "created": _iso(job.created),
+        "updated": _iso(job.updated),
+    }
+    # Times not reached yet are left out (the schema has no null date-time).
+    if job.started is not None:
+        document["started"] = _iso(job.started)
+    if job.finished is not None:
+        document["finished"] = _iso(job.finished)
+    document["links"] = links
+    return document
+
+
+def job_list(
+    jobs: Sequence[JobRecord], urls: PublicUrls, self_href: str, next_href: str | None
+) -> dict[str, Any]:
+    """A page of jobs, newest first, with ``self`` and, when more remain, ``next``."""
+    links = [{"href": self_href, "rel": "self", "type": JSON, "title": "this page of jobs"}]
+    if next_href is not None:
+        links.append({"href": next_href, "rel": "next", "type": JSON, "title": "the next page"})
+    return {"jobs": [status_info(job, urls) for job in jobs], "links": links}

@@ -1,0 +1,175 @@
+"""The shapes of the façade's documents, for the OpenAPI document (OGC 18-062r2's
+schemas, as dexlab fills them); and the problem statuses of each route.
+
+These describe what the handlers build (:mod:`service.ogc.process_documents`,
+:mod:`service.ogc.job_documents`, :mod:`service.ogc.results`); schemathesis checks the
+answers against them.  Names carry an ``Ogc`` prefix: the native API has its own
+``Link``, ``JobList`` and so on.
+"""
+
+from __future__ import annotations
+
+from typing import Any, Literal
+
+from pydantic import BaseModel, ConfigDict, Field
+from pydantic.json_schema import SkipJsonSchema
+
+__all__ = [
+    "ARTIFACT_CONTENT",
+    "OGC_ROUTE_PROBLEMS",
+    "RESULTS_SCHEMA",
+    "OgcConfClasses",
+    "OgcJobList",
+    "OgcLandingPage",
+    "OgcProcess",
+    "OgcProcessList",
+    "OgcStatusInfo",
+]
+
+
+class _Document(BaseModel):
+    model_config = ConfigDict(extra="forbid")
+
+
+class OgcLink(_Document):
+    href: str
+    rel: str
+    type: str | SkipJsonSchema[None] = None
+    title: str | SkipJsonSchema[None] = None
+
+
+class OgcLandingPage(_Document):
+    """landingPage.yaml."""
+
+    title: str
+    description: str
+    links: list[OgcLink]
+
+
+class OgcConfClasses(_Document):
+    """confClasses.yaml: the conformance classes met."""
+
+    conformsTo: list[str]
+
+
+JobControl = Literal["sync-execute", "async-execute", "dismiss"]
+
+
+class OgcProcessSummary(_Document):
+    """processSummary.yaml."""
+
+    id: str
+    title: str
+    description: str
+    version: str
+    jobControlOptions: list[JobControl]
+    outputTransmission: list[Literal["value", "reference"]]
+    links: list[OgcLink]
+
+
+class OgcProcessList(_Document):
+    """processList.yaml."""
+
+    processes: list[OgcProcessSummary]
+    links: list[OgcLink]
+
+
+class OgcInputDescription(_Document):
+    """inputDescription.yaml."""
+
+    model_config = ConfigDict(extra="forbid", populate_by_name=True)
+
+    title: str
+    description: str
+    minOccurs: int = Field(ge=0)
+    maxOccurs: int | Literal["unbounded"]
+    schema_: dict[str, Any] = Field(alias="schema")
+
+
+class OgcOutputDescription(_Document):
+    """outputDescription.yaml."""
+
+    model_config = ConfigDict(extra="forbid", populate_by_name=True)
+
+    title: str
+    description: str
+    schema_: dict[str, Any] = Field(alias="schema")
+
+
+class OgcProcess(OgcProcessSummary):
+    """process.yaml: the summary with the inputs and outputs maps."""
+
+    inputs: dict[str, OgcInputDescription]
+    outputs: dict[str, OgcOutputDescription]
+
+
+class OgcStatusInfo(_Document):
+    """statusInfo.yaml (a time not reached yet is left out)."""
+
+    processID: str
+    type: Literal["process"]
+    jobID: str
+    status: Literal["accepted", "running", "successful", "failed", "dismissed"]
+    message: str
+    progress: int = Field(ge=0, le=100)
+    created: str
+    updated: str
+    started: str | SkipJsonSchema[None] = None
+    finished: str | SkipJsonSchema[None] = None
+    links: list[OgcLink]
+
+
+class OgcJobList(_Document):
+    """jobList.yaml: a page of jobs, newest first."""
+
+    jobs: list[OgcStatusInfo]
+    links: list[OgcLink]
+
+
+#: results.yaml (``response=document``): output ID -> an in-line value, a qualified value
+#: or a link; with ``response=raw`` and one output, that output's own JSON value.
+RESULTS_SCHEMA: dict[str, Any] = {
+    "title": "OgcResults",
+    "description": "response=document: an object, output ID -> its value in line (a "
+    'literal or array; an object as a qualified value {"value", "mediaType"}; a file as '
+    '{"value": base64, "encoding": "base64", "mediaType"}) or by reference ({"href", '
+    '"type", "title"}).  response=raw with one JSON output: that output\'s value.',
+}
+
+#: What a raw output can be: JSON, or a file's bytes.
+ARTIFACT_CONTENT: dict[str, Any] = {
+    media: {"schema": {"type": "string", "format": "binary"}}
+    for media in (
+        "image/png",
+        "image/svg+xml",
+        "text/csv",
+        "application/x-npz",
+        "multipart/related",
+    )
+}
+
+#: Problem statuses of each route (see service.openapi).
+OGC_ROUTE_PROBLEMS: dict[tuple[str, str], tuple[int, ...]] = {
+    ("get", "/ogc"): (),
+    ("get", "/ogc/"): (),
+    ("get", "/ogc/conformance"): (),
+    ("get", "/ogc/processes"): (400,),
+    ("get", "/ogc/processes/{processID}"): (404,),
+    ("post", "/ogc/processes/{processID}/execution"): (400, 404, 413, 422, 503, 507),
+    ("get", "/ogc/jobs"): (400, 404, 503),
+    ("get", "/ogc/jobs/{jobID}"): (404, 503),
+    ("delete", "/ogc/jobs/{jobID}"): (404, 503),
+    ("get", "/ogc/jobs/{jobID}/results"): (404, 503, 507),
+    ("get", "/ogc/jobs/{jobID}/results/{outputID}"): (404, 503, 507),
+}
+
+
+def document_process_ids(document: dict[str, Any], process_ids: list[str]) -> None:
+    """Name the registered processes in the OpenAPI document's ``processID`` filter of
+    ``GET /ogc/jobs`` (another ID is answered ``404 no-such-process``)."""
+    operation = document.get("paths", {}).get("/ogc/jobs", {}).get("get", {})
+    for parameter in operation.get("parameters", []):
+        if parameter.get("name") == "processID" and parameter.get("in") == "query":
+            for option in parameter["schema"].get("anyOf", [parameter["schema"]]):
+                if option.get("type") == "array":
+                    option["items"] = {"type": "string", "enum": list(process_ids)}

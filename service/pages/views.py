@@ -1,0 +1,270 @@
+"""What each page shows: the context of every template, from the stored records.
+
+Route handlers fetch (store, registry) and call one of these; nothing here touches the
+store or does blocking work beyond reading a method page from disk.
+"""
+
+from __future__ import annotations
+
+import json
+from collections.abc import Mapping, Sequence
+from typing import Any
+from urllib.parse import urlencode
+
+from fastapi import Request
+from fastapi.responses import HTMLResponse
+
+from service.documents import results_document, status_document
+from service.pages.input_table import input_rows
+from service.pages.renderer import Pages
+from service.pages.result_view import result_view
+from service.problems import PROBLEM_TYPES, problem_type_uri
+from worker.contract import ArtifactInfo, JobRecord, JobStatus
+from worker.processes import ProcessDefinition, ProcessRegistry
+from worker.store.base import JobPage
+
+__all__ = [
+    "ExampleForm",
+    "compact_json",
+    "example_forms",
+    "job_list_page",
+    "job_page",
+    "landing_page",
+    "method_list_page",
+    "method_page",
+    "process_list_page",
+    "process_page",
+]
+
+ExampleForm = dict[str, Any]
+
+_PLOTS = ("image/png", "image/svg+xml")
+_DOWNLOADS = frozenset({"text/csv", "application/x-npz"})
+
+
+def landing_page(request: Request, pages: Pages, registry: ProcessRegistry) -> HTMLResponse:
+    return pages.render(request, "landing.html", {"families": pages.families(registry)})
+
+
+def process_list_page(request: Request, pages: Pages, registry: ProcessRegistry) -> HTMLResponse:
+    return pages.render(request, "processes.html", {"families": pages.families(registry)})
+
+
+def compact_json(value: Any, indent: int = 0, width: int = 72) -> str:
+    """JSON laid out for a person to edit: a value that fits ``width`` on one line,
+    else one member (or item) per line, indented by two."""
+    flat = json.dumps(value, ensure_ascii=False)
+    if len(flat) + indent <= width or not isinstance(value, dict | list) or not value:
+        return flat
+    pad = " " * (indent + 2)
+    if isinstance(value, dict):
+        members = [
+            f"{pad}{json.dumps(str(k), ensure_ascii=False)}: {compact_json(v, indent + 2, width)}"
+            for k, v in value.items()
+        ]
+        return "{\n" + ",\n".join(members) + "\n" + " " * indent + "}"
+    items = [f"{pad}{compact_json(v, indent + 2, width)}" for v in value]
+    return "[\n" + ",\n".join(items) + "\n" + " " * indent + "]"
+
+
+def _rows(text: str) -> int:
+    return min(max(text.count("\n") + 2, 4), 24)
+
+
+def example_forms(definition: ProcessDefinition) -> list[ExampleForm]:
+    """One form per worked example, pre-filled with its inputs (one empty form for a
+    process without examples)."""
+    forms: list[ExampleForm] = [
+        {
+            "title": ex.title,
+            "description": ex.description,
+            "text": compact_json(dict(ex.inputs)),
+            "problem": None,
+        }
+        for ex in definition.examples
+    ]
+    if not forms:
+        forms = [
+            {
+                "title": "Your inputs",
+                "description": "Write the inputs as JSON.",
+                "text": "{}",
+                "problem": None,
+            }
+        ]
+    for form in forms:
+        form["rows"] = _rows(form["text"])
+    return forms
+
+
+def process_page(
+    request: Request,
+    pages: Pages,
+    registry: ProcessRegistry,
+    definition: ProcessDefinition,
+    *,
+    examples: Sequence[ExampleForm] | None = None,
+    status_code: int = 200,
+) -> HTMLResponse:
+    """A process's page; ``examples`` replaces the worked-example forms (a re-rendered
+    form keeps the user's text and shows its problem)."""
+    family = next(
+        (f.title for f in pages.families(registry) if definition in f.processes), "Processes"
+    )
+    method = pages.methods.page(definition.method_doc) if definition.method_doc else None
+    context = {
+        "process": definition,
+        "family_title": family,
+        "method": method,
+        "examples": examples if examples is not None else example_forms(definition),
+        "inputs": input_rows(definition.inputs_schema),
+    }
+    return pages.render(request, "process.html", context, status_code=status_code)
+
+
+def job_list_page(
+    request: Request,
+    pages: Pages,
+    registry: ProcessRegistry,
+    page: JobPage,
+    *,
+    limit: int,
+    status: JobStatus | None,
+    process_id: str | None,
+) -> HTMLResponse:
+    filters: dict[str, str] = {"limit": str(limit)}
+    if status is not None:
+        filters["status"] = status.value
+    if process_id:
+        filters["processID"] = process_id
+    next_href = (
+        f"/v1/jobs?{urlencode({**filters, 'cursor': page.next_cursor})}" if page.next_cursor else ""
+    )
+    first_href = f"/v1/jobs?{urlencode(filters)}" if "cursor" in request.query_params else ""
+    query = dict(request.query_params)
+    query["f"] = "json"
+    context = {
+        "jobs": [status_document(j) for j in page.jobs],
+        "statuses": [s.value for s in JobStatus],
+        "process_ids": registry.ids(),
+        "status": status.value if status is not None else "",
+        "process_id": process_id or "",
+        "limit": limit,
+        "next_href": next_href,
+        "first_href": first_href,
+        "json_href": f"/v1/jobs?{urlencode(query)}",
+    }
+    return pages.render(request, "jobs.html", context)
+
+
+def _failure(job: JobRecord) -> dict[str, Any] | None:
+    if job.status is JobStatus.DISMISSED:
+        status, title, _ = PROBLEM_TYPES["job-dismissed"]
+        return {
+            "type": problem_type_uri("job-dismissed"),
+            "title": title,
+            "status": status,
+            "detail": "This job was dismissed; it has no results.",
+        }
+    if job.status is not JobStatus.FAILED:
+        return None
+    error = dict(job.error or {})
+    slug = str(error.get("type") or "job-failed")
+    status, title, _ = PROBLEM_TYPES.get(slug, PROBLEM_TYPES["job-failed"])
+    kind = slug if slug.startswith(("/", "http:", "https:")) else problem_type_uri(slug)
+    return {
+        "type": kind,
+        "title": str(error.get("title") or title),
+        "status": status,
+        "detail": str(error.get("detail") or "The job failed."),
+    }
+
+
+def _plots(artifacts: Sequence[ArtifactInfo], base: str) -> list[dict[str, str]]:
+    """One image per plot: its PNG, else its SVG."""
+    by_stem: dict[str, ArtifactInfo] = {}
+    for artifact in artifacts:
+        if artifact.media_type not in _PLOTS:
+            continue
+        stem = artifact.name.rsplit(".", 1)[0]
+        known = by_stem.get(stem)
+        if known is None or artifact.media_type == "image/png":
+            by_stem[stem] = artifact
+    return [
+        {"name": a.name, "title": a.title, "href": f"{base}/results/{a.name}"}
+        for a in by_stem.values()
+    ]
+
+
+def _notes(result: Mapping[str, Any]) -> list[dict[str, Any]]:
+    notes = result.get("notes")
+    errata = result.get("paper_errata")
+    marked = {str(e) for e in errata} if isinstance(errata, list) else set()
+    if not isinstance(notes, list):
+        return []
+    return [{"text": str(n), "erratum": str(n) in marked} for n in notes]
+
+
+def job_page(
+    request: Request,
+    pages: Pages,
+    registry: ProcessRegistry,
+    job: JobRecord,
+    result: Mapping[str, Any] | None,
+) -> HTMLResponse:
+    """A job's page: status (live while it runs), the failure, the plots, the notes,
+    the result as tables, the downloads and the inputs."""
+    document = status_document(job)
+    definition = registry.get(job.process_id)
+    finished = job.status in (JobStatus.SUCCESSFUL, JobStatus.FAILED)
+    live = job.status in (JobStatus.ACCEPTED, JobStatus.RUNNING)
+    context: dict[str, Any] = {
+        "job": document,
+        "job_inputs": dict(job.inputs),
+        "process_title": definition.title if definition is not None else job.process_id,
+        "live": live,
+        "finished": finished,
+        "dismiss_label": ("Cancel this job" if live else "Delete the results" if finished else ""),
+        "problem": _failure(job),
+        "plots": [],
+        "notes": [],
+        "errata_count": 0,
+        "result": None,
+        "downloads": [],
+    }
+    if result is not None and job.status is JobStatus.SUCCESSFUL:
+        results = results_document(job, result)
+        notes = _notes(result)
+        context.update(
+            plots=_plots(job.artifacts, f"/v1/jobs/{job.job_id}"),
+            notes=notes,
+            errata_count=sum(1 for n in notes if n["erratum"]),
+            result=result_view(result, leave_out=("notes", "paper_errata")),
+            downloads=[
+                {**a, "download": a["media_type"] in _DOWNLOADS} for a in results["artifacts"]
+            ],
+        )
+    return pages.render(request, "job.html", context)
+
+
+def method_list_page(request: Request, pages: Pages, registry: ProcessRegistry) -> HTMLResponse:
+    methods = []
+    for slug in pages.methods.slugs():
+        page = pages.methods.page(slug)
+        if page is None:  # pragma: no cover - removed between listing and reading
+            continue
+        processes = [d for d in registry if d.method_doc == slug]
+        methods.append({"slug": slug, "title": page.title, "processes": processes})
+    context = {"methods": methods, "docs_dir": str(pages.settings.docs_dir)}
+    return pages.render(request, "methods.html", context)
+
+
+def method_page(
+    request: Request, pages: Pages, registry: ProcessRegistry, slug: str
+) -> HTMLResponse | None:
+    """The method page ``slug``, or None if there is none."""
+    page = pages.methods.page(slug)
+    if page is None:
+        return None
+    processes = [d for d in registry if d.method_doc == slug]
+    return pages.render(request, "method.html", {"method": page, "processes": processes})

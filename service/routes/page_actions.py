@@ -1,0 +1,129 @@
+"""The pages' form actions (no JavaScript needed), under ``/pages/``.
+
+- ``POST /pages/processes/{processID}/run``: the (edited) JSON of a worked example,
+  as the form field ``inputs``; a job is queued and the browser is sent to its page
+  (303).  JSON that does not parse, or inputs that do not validate, re-render the
+  process page with the problem and the user's text kept.
+- ``POST /pages/jobs/{jobID}/dismiss``: cancel a queued or running job, or delete a
+  finished one's results, then back to the job's page (303).
+
+Both refuse a form posted from another site (403, :mod:`service.pages.forms`).  They
+are page actions, not API operations: the API has ``POST .../execution`` and
+``DELETE /v1/jobs/{jobID}``; these are left out of the OpenAPI document.
+"""
+
+from __future__ import annotations
+
+import json
+from functools import partial
+from typing import Any
+
+from fastapi import APIRouter, Request
+from fastapi.responses import HTMLResponse, RedirectResponse
+from starlette.concurrency import run_in_threadpool
+
+from service.deps import DispatcherDep, RegistryDep, SettingsDep, StoreDep
+from service.documents import job_href
+from service.pages import PagesDep, views
+from service.pages.forms import check_form_origin, read_form
+from service.problems import PROBLEM_TYPES, problem_type_uri
+from service.request_guard import json_depth
+from worker.errors import CostLimitExceeded, InvalidInputs, NoSuchJob, NoSuchProcess
+from worker.submission import submit
+
+__all__ = ["router"]
+
+router = APIRouter(prefix="/pages", include_in_schema=False)
+
+
+class _BadText(Exception):
+    """The form's JSON text is not a JSON object; the message says why."""
+
+
+def _refuse_constant(name: str) -> Any:
+    raise _BadText(f"{name} is not a JSON number")
+
+
+def _problem(slug: str, detail: str, **extra: Any) -> dict[str, Any]:
+    status, title, _ = PROBLEM_TYPES[slug]
+    return {
+        "type": problem_type_uri(slug),
+        "title": title,
+        "status": status,
+        "detail": detail,
+        **extra,
+    }
+
+
+def _parse_inputs(text: str, max_depth: int) -> dict[str, Any]:
+    try:
+        value = json.loads(text, parse_constant=_refuse_constant)
+    except json.JSONDecodeError as exc:
+        raise _BadText(f"{exc.msg} at line {exc.lineno} column {exc.colno}") from None
+    except RecursionError:
+        raise _BadText(f"they nest deeper than {max_depth} levels") from None
+    if not isinstance(value, dict):
+        raise _BadText('they must be a JSON object: {"name": value, ...}')
+    if json_depth(value) > max_depth:
+        raise _BadText(f"they nest deeper than {max_depth} levels")
+    return value
+
+
+def _example_index(value: str, count: int) -> int:
+    """Which example's form was posted (the first, if the field is not one)."""
+    try:
+        index = int(value)
+    except ValueError:
+        return 0
+    return index if 0 <= index < count else 0
+
+
+@router.post("/processes/{process_id}/run", response_model=None)
+async def run_process(
+    process_id: str,
+    request: Request,
+    store: StoreDep,
+    registry: RegistryDep,
+    settings: SettingsDep,
+    dispatcher: DispatcherDep,
+    pages: PagesDep,
+) -> RedirectResponse | HTMLResponse:
+    check_form_origin(request)
+    definition = registry.get(process_id)
+    if definition is None:
+        raise NoSuchProcess(f"No process {process_id!r}; available: {', '.join(registry.ids())}.")
+    form = await read_form(request)
+    text = form.get("inputs", "")
+    examples = views.example_forms(definition)
+    index = _example_index(form.get("example", ""), len(examples))
+    try:
+        inputs = _parse_inputs(text, settings.max_json_depth)
+        job, _ = await run_in_threadpool(
+            submit, store, registry, settings, process_id, inputs, None, dispatcher
+        )
+    except _BadText as exc:
+        problem = _problem("malformed-request", f"The inputs are not valid JSON: {exc}.")
+    except InvalidInputs as exc:
+        problem = _problem("invalid-inputs", exc.detail, errors=exc.errors)
+    except CostLimitExceeded as exc:
+        problem = _problem("cost-limit-exceeded", exc.detail)
+    else:
+        return RedirectResponse(job_href(job.job_id), status_code=303)
+    examples[index].update(text=text, problem=problem, rows=max(examples[index]["rows"], 8))
+    return await run_in_threadpool(
+        partial(views.process_page, examples=examples, status_code=problem["status"]),
+        request,
+        pages,
+        registry,
+        definition,
+    )
+
+
+@router.post("/jobs/{job_id}/dismiss", response_model=None)
+async def dismiss_job(job_id: str, request: Request, store: StoreDep) -> RedirectResponse:
+    check_form_origin(request)
+    await read_form(request)
+    job = await run_in_threadpool(store.dismiss, job_id)
+    if job is None:
+        raise NoSuchJob(f"No job {job_id!r}.")
+    return RedirectResponse(job_href(job_id), status_code=303)
