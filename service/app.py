@@ -5,10 +5,10 @@ from __future__ import annotations
 import logging
 from collections.abc import AsyncIterator
 from contextlib import asynccontextmanager
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING
 
-from fastapi import FastAPI, Request, Response
-from fastapi.responses import HTMLResponse, JSONResponse
+from fastapi import FastAPI
+from fastapi.responses import JSONResponse
 from fastapi.staticfiles import StaticFiles
 
 from service.api_docs import install_api_docs
@@ -18,11 +18,10 @@ from service.job_watcher import JobWatcher
 from service.ogc.forwarded import ForwardedHeaders
 from service.ogc.router import ogc_router
 from service.openapi import install_openapi
-from service.pages import STATIC_DIR, STATIC_PREFIX, FormatQuery, Pages, PageSettings, wants_html
-from service.pages.views import landing_page
+from service.pages import STATIC_DIR, STATIC_PREFIX, Pages, PageSettings
 from service.problems import PROBLEM_TYPES
 from service.request_guard import RequestGuard
-from service.routes import health, job_events, jobs, methods, page_actions, processes
+from service.routes import health, job_events, jobs, landing, methods, page_actions, processes
 from service.routes.process_operations import FAMILY_TAGS, execution_router, family_of
 from worker.dispatch import Dispatcher, make_dispatcher
 from worker.pool import WorkerPool
@@ -130,6 +129,7 @@ def create_app(settings: ServiceSettings | None = None) -> FastAPI:
     app.include_router(processes.router)
     app.include_router(jobs.router)
     app.include_router(health.router)
+    app.include_router(landing.router)
     app.include_router(ogc_router())  # OGC API - Processes at /ogc/, same store and jobs
     # Pages for people: HTML on the GET routes above, method pages, form actions.
     app.state.pages = Pages(PageSettings(), family_tags=FAMILY_TAGS, family_of=family_of)
@@ -137,25 +137,6 @@ def create_app(settings: ServiceSettings | None = None) -> FastAPI:
     app.include_router(methods.router)
     app.include_router(page_actions.router)
     app.mount(STATIC_PREFIX, StaticFiles(directory=STATIC_DIR), name="pages-static")
-
-    @app.get("/", tags=["meta"], summary="Landing page", response_model=None)
-    def landing(
-        request: Request, response: Response, f: FormatQuery = None
-    ) -> dict[str, Any] | HTMLResponse:
-        response.headers["Vary"] = "Accept"
-        if wants_html(request):
-            return landing_page(request, app.state.pages, registry)
-        return {
-            "title": "dexlab",
-            "description": "Manipulator kinematic-design service",
-            "links": [
-                {"href": "/v1/processes", "rel": "processes", "type": "application/json"},
-                {"href": "/v1/jobs", "rel": "jobs", "type": "application/json"},
-                {"href": "/docs", "rel": "service-doc", "type": "text/html"},
-                {"href": "/openapi.json", "rel": "service-desc",
-                 "type": "application/vnd.oai.openapi+json;version=3.0"},
-            ],
-        }
 
     @app.get("/problems/{slug}", tags=["meta"], summary="What a problem type means")
     def problem_type(slug: str) -> JSONResponse:

@@ -61,6 +61,7 @@ PROBLEM_SCHEMA: dict[str, Any] = {
 #: unexpected error, always a problem document) is added to every operation.
 ROUTE_PROBLEMS: dict[tuple[str, str], tuple[int, ...]] = {
     ("get", "/"): (422,),
+    ("get", "/v1"): (422,),
     ("get", "/problems/{slug}"): (404,),
     ("get", "/health/live"): (),
     ("get", "/health/ready"): (503,),

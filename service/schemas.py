@@ -142,7 +142,7 @@ class ProcessDescription(_Document):
 
 
 class Landing(_Document):
-    """``GET /``: where to go from here."""
+    """``GET /`` and ``GET /v1``: where to go from here."""
 
     title: str
     description: str
@@ -161,6 +161,7 @@ DOCUMENT_SCHEMAS: tuple[type[BaseModel], ...] = (
 #: The 200 (or 201) document of each route: (method, path) -> (status, model).
 ROUTE_DOCUMENTS: dict[tuple[str, str], tuple[str, type[BaseModel]]] = {
     ("get", "/"): ("200", Landing),
+    ("get", "/v1"): ("200", Landing),
     ("get", "/v1/processes"): ("200", ProcessList),
     ("get", "/v1/processes/{process_id}"): ("200", ProcessDescription),
     ("post", "/v1/processes/{process_id}/execution"): ("201", StatusDocument),

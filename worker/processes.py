@@ -17,7 +17,23 @@ from pydantic import BaseModel
 
 from worker.contract import JobContext, JobOutcome
 
-__all__ = ["ProcessDefinition", "ProcessExample", "ProcessRegistry", "default_registry"]
+__all__ = [
+    "ProcessDefinition",
+    "ProcessExample",
+    "ProcessFile",
+    "ProcessRegistry",
+    "data_files",
+    "default_registry",
+    "figure_files",
+]
+
+#: File extension -> media type of the files jobs write.
+FILE_MEDIA_TYPES: Mapping[str, str] = {
+    "png": "image/png",
+    "svg": "image/svg+xml",
+    "csv": "text/csv",
+    "npz": "application/x-npz",
+}
 
 
 @dataclass(frozen=True)
@@ -27,6 +43,33 @@ class ProcessExample:
     title: str
     inputs: Mapping[str, Any]
     description: str = ""
+
+
+@dataclass(frozen=True)
+class ProcessFile:
+    """A file a job of the process can write (an artifact), by name."""
+
+    name: str
+    title: str
+
+    @property
+    def media_type(self) -> str:
+        return FILE_MEDIA_TYPES[self.name.rsplit(".", 1)[-1]]
+
+
+def figure_files(stem: str, title: str) -> tuple[ProcessFile, ProcessFile]:
+    """A figure's two files: ``<stem>.png`` and ``<stem>.svg``."""
+    return ProcessFile(f"{stem}.png", f"{title} (PNG)"), ProcessFile(
+        f"{stem}.svg", f"{title} (SVG)"
+    )
+
+
+def data_files(stem: str, title: str) -> tuple[ProcessFile, ProcessFile]:
+    """A data set's two files: ``<stem>.csv`` and ``<stem>.npz``."""
+    return (
+        ProcessFile(f"{stem}.csv", f"{title} (CSV)"),
+        ProcessFile(f"{stem}.npz", f"{title} (NumPy arrays)"),
+    )
 
 
 @dataclass(frozen=True)
@@ -55,6 +98,9 @@ class ProcessDefinition:
     #: The method page in ``docs/methods/<method_doc>.md`` that explains this process
     #: (equations, conventions, the paper's errata, citation); "" for none.
     method_doc: str = ""
+    #: Every file a job of this process can write (a job need not write all of them:
+    #: ``"plots": false`` writes no figures); checked against real runs by the tests.
+    files: tuple[ProcessFile, ...] = ()
 
     @cached_property
     def inputs_schema(self) -> dict[str, Any]:

@@ -7,7 +7,7 @@ from typing import Any
 
 import pytest
 
-from service.ogc.outputs import ARTIFACT_FILES, process_outputs
+from service.ogc.outputs import process_outputs
 from worker.processes import default_registry
 from worker.submission import validate_inputs
 
@@ -75,7 +75,8 @@ class _Quiet:
 
 
 def test_every_registered_process_has_its_files_listed() -> None:
-    assert set(SMALL) == {d.id for d in default_registry()} == set(ARTIFACT_FILES)
+    assert set(SMALL) == {d.id for d in default_registry()}
+    assert all(d.files for d in default_registry())
 
 
 @pytest.mark.parametrize("process_id", sorted(SMALL))

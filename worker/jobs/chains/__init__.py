@@ -28,7 +28,7 @@ from worker.jobs.chains.specs import (
     MAX_SINGLE_LOOP_LINKS,
     ChainParallelismSpec,
 )
-from worker.processes import ProcessDefinition
+from worker.processes import ProcessDefinition, figure_files
 
 __all__ = ["CHAIN_PARALLELISM", "FOURBAR_GRASHOF"]
 
@@ -46,9 +46,13 @@ def _run_fourbar_grashof(spec: FourBarGrashofSpec, ctx: JobContext) -> JobOutcom
 
 
 CHAIN_PARALLELISM = ProcessDefinition(
-    method_doc="chains",
     id="chain-parallelism",
     title="Kinematic chains: uniform rigidity (P) and parallelism (Q)",
+    method_doc="chains",
+    files=(
+        *figure_files("chain_graphs", "Link graphs of the chains, loops marked"),
+        *figure_files("parallelism_comparison", "P and Q of the chains compared"),
+    ),
     description=(
         "Compares planar kinematic chains with the same number of links and degrees of "
         "freedom (docs/methods/chains.md). For each chain, in the order given: its mobility by "
@@ -90,9 +94,10 @@ CHAIN_PARALLELISM = ProcessDefinition(
 )
 
 FOURBAR_GRASHOF = ProcessDefinition(
-    method_doc="chains",
     id="fourbar-grashof",
     title="Four-bar chain: Grashof type, Barker's class and fully turning links",
+    method_doc="chains",
+    files=figure_files("fourbar_motion", "Range of motion and fully turning links"),
     description=(
         "Grashof's criterion s + l vs p + q (Patel & Sobh eqs 6-7) on four link lengths in "
         "order round the loop: Grashof, non-Grashof or change point; with the given ground "

@@ -26,7 +26,7 @@ from worker.jobs.planar2dof.costs import (
 )
 from worker.jobs.planar2dof.examples import CONDITIONING_MAP_EXAMPLES, OPTIMISATION_EXAMPLES
 from worker.jobs.planar2dof.specs import ConditioningMapSpec, OptimisationSpec
-from worker.processes import ProcessDefinition
+from worker.processes import ProcessDefinition, ProcessFile, data_files, figure_files
 
 __all__ = ["CONDITIONING_MAP", "OPTIMISATION"]
 
@@ -44,9 +44,14 @@ def _run_optimisation(spec: OptimisationSpec, ctx: JobContext) -> JobOutcome:
 
 
 CONDITIONING_MAP = ProcessDefinition(
-    method_doc="planar-parallel",
     id="planar2dof-conditioning-map",
     title="2-DOF planar parallel robot: conditioning map",
+    method_doc="planar-parallel",
+    files=(
+        *figure_files("inverse_condition_map", "Conditioning index 1/kappa (Fig. 4)"),
+        *figure_files("pressure_angle_map", "Minimum pressure angle beta_min (Fig. 5)"),
+        *data_files("conditioning_map", "Conditioning map, one row per grid node"),
+    ),
     description=(
         "For a mirror-symmetric 2-DOF parallel robot of Huang et al.'s Fig. 1 (proximal "
         "arms, telescopic legs or linear drives) in one working mode: reachability, the "
@@ -94,9 +99,17 @@ CONDITIONING_MAP = ProcessDefinition(
 )
 
 OPTIMISATION = ProcessDefinition(
-    method_doc="planar-parallel",
     id="planar2dof-optimisation",
     title="2-DOF planar parallel robot: optimum design (proximal arms)",
+    method_doc="planar-parallel",
+    files=(
+        *figure_files("conditioning_limit", "1/kappa0 against [beta] and delta (Fig. 7)"),
+        *figure_files("design_indices", "S/S_max, mean 1/kappa and eta against delta (Fig. 8)"),
+        *figure_files("normalised_rectangle", "1/kappa and beta_min over the rectangle (Fig. 9)"),
+        *figure_files("rectangle_workspace", "The rectangle inside W_kappa0 (Fig. 6)"),
+        ProcessFile("sweep.csv", "The delta sweep, one row per delta (CSV)"),
+        ProcessFile("optimisation.npz", "The sweep and the figures' arrays (NumPy arrays)"),
+    ),
     description=(
         "Huang et al.'s design of the proximal-arm robot with the isotropic architecture of "
         "eq (12) (l1 = 1, l2 = delta): the conditioning limit 1/kappa0 from an allowable "

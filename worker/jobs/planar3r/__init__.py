@@ -23,7 +23,7 @@ from worker.jobs.planar3r.costs import (
 )
 from worker.jobs.planar3r.examples import DEXTERITY_MAP_EXAMPLES, SYNTHESIS_EXAMPLES
 from worker.jobs.planar3r.specs import DexterityMapSpec, SynthesisSpec
-from worker.processes import ProcessDefinition
+from worker.processes import ProcessDefinition, ProcessFile, data_files, figure_files
 
 __all__ = ["DEXTERITY_MAP", "SYNTHESIS"]
 
@@ -46,9 +46,15 @@ _LIMITS_TEXT = (
 )
 
 DEXTERITY_MAP = ProcessDefinition(
-    method_doc="planar-serial",
     id="planar3r-dexterity-map",
     title="Three-link planar arm: dexterity map",
+    method_doc="planar-serial",
+    files=(
+        *figure_files("heatmap", "Dexterity d_z over the workspace"),
+        *figure_files("surface", "Dexterity d_z, 3-D surface"),
+        *figure_files("radial_section", "Dexterity d_z along a ray from the base"),
+        *data_files("dexterity_map", "Dexterity map"),
+    ),
     description=(
         "Orientation dexterity d_z (0..1) and dexterity index D = d_z/3 (Patel & Sobh "
         "eqs 2-5) at every node of a grid, for links [l1, l2, l3] from the base. Fully "
@@ -91,9 +97,13 @@ DEXTERITY_MAP = ProcessDefinition(
 )
 
 SYNTHESIS = ProcessDefinition(
-    method_doc="planar-serial",
     id="planar3r-synthesis",
     title="Three-link planar arm: link lengths from task points or a trajectory",
+    method_doc="planar-serial",
+    files=(
+        *figure_files("synthesis_cases", "d_z of the design in the paper's cases"),
+        ProcessFile("synthesis_cases.npz", "d_z maps of the cases (NumPy arrays)"),
+    ),
     description=(
         "Patel & Sobh's synthesis: the exact distance range [d_min, d_max] of the task "
         "points or trajectory from the base (optionally rounded outward, as the paper "

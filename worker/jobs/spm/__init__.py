@@ -40,7 +40,7 @@ from worker.jobs.spm.examples import (
 )
 from worker.jobs.spm.optimisation_spec import SCREEN_PER_START, OptimisationSpec
 from worker.jobs.spm.specs import ConditioningMapSpec, DesignSpaceSpec
-from worker.processes import ProcessDefinition
+from worker.processes import ProcessDefinition, ProcessFile, data_files, figure_files
 
 __all__ = ["CONDITIONING_MAP", "DESIGN_SPACE", "OPTIMISATION"]
 
@@ -81,9 +81,17 @@ _INDICES = (
 )
 
 CONDITIONING_MAP = ProcessDefinition(
-    method_doc="spherical-parallel",
     id="spm-conditioning-map",
     title="Spherical parallel manipulator: conditioning over a workspace",
+    method_doc="spherical-parallel",
+    files=(
+        *figure_files("inverse_condition_map", "1/kappa over tilt x azimuth at fixed torsions"),
+        *figure_files("torsion_sweeps", "1/kappa along a full torsion turn"),
+        ProcessFile(
+            "conditioning_samples.csv", "Inverse kinematics and 1/kappa at the samples (CSV)"
+        ),
+        ProcessFile("conditioning_map.npz", "Conditioning map (NumPy arrays)"),
+    ),
     description=(
         "For one design (alpha1, alpha2, beta, gamma; gamma = 0 is the coaxial 'active ball "
         "joint') and branch ((u_i x w_i) . v_i < 0 by default, eq 29): the inverse "
@@ -92,10 +100,17 @@ CONDITIONING_MAP = ProcessDefinition(
         "1/kappa, the type-II measure det(A) (eq 30), where the design sits in the design "
         "space, exact values at given orientations, 1/kappa maps over tilt x azimuth at "
         "chosen torsions (Fig. 6 style) and along full torsion turns (Fig. 7). "
-        + _SAMPLING + " " + _INDICES + " "
-        + _limits(CONDITIONING_MAP_COST_LIMIT, CONDITIONING_MAP_TIME_LIMIT_S,
-                  CONDITIONING_MAP_SYNC_COST_LIMIT, "samples + given orientations + map "
-                  "and sweep points + 22,464 for the closed-workspace minimum")
+        + _SAMPLING
+        + " "
+        + _INDICES
+        + " "
+        + _limits(
+            CONDITIONING_MAP_COST_LIMIT,
+            CONDITIONING_MAP_TIME_LIMIT_S,
+            CONDITIONING_MAP_SYNC_COST_LIMIT,
+            "samples + given orientations + map "
+            "and sweep points + 22,464 for the closed-workspace minimum",
+        )
     ),
     inputs_model=ConditioningMapSpec,
     run=_run_conditioning_map,
@@ -108,8 +123,7 @@ CONDITIONING_MAP = ProcessDefinition(
         "indices": "rms_inverse_condition (C_n, eq 25), mean_square_inverse_condition "
         "(eq 28), gci (eq 24), min/max_inverse_condition, min_abs_det_a, all_real, "
         "samples, real_samples; null summaries unless every sample is reachable.",
-        "workspace_minimum": "Least 1/kappa on the closed workspace (boundary included) and "
-        "where.",
+        "workspace_minimum": "Least 1/kappa on the closed workspace (boundary included) and where.",
         "design_space": "f_min, f_max, D1_deg, D2_deg, margins_deg, feasible, on_edge (eq 19).",
         "type_ii_singularity": "min |det A|, min det(A)^2 (eq 30), where, det(A) range.",
         "inverse_kinematics": "samples, real, unreachable (indices, psi), and per sample "
@@ -129,9 +143,14 @@ CONDITIONING_MAP = ProcessDefinition(
 )
 
 DESIGN_SPACE = ProcessDefinition(
-    method_doc="spherical-parallel",
     id="spm-design-space",
     title="Spherical parallel manipulator: design space for a prescribed workspace",
+    method_doc="spherical-parallel",
+    files=(
+        *figure_files("design_space", "Sub-design spaces in the a1-a2 plane"),
+        *figure_files("index_map", "mean(1/kappa^2) over one sub-design space"),
+        *data_files("design_space", "Design space per beta"),
+    ),
     description=(
         "For each beta (a list or a range) and gamma (or gamma = beta with identical "
         "platforms): f_min and f_max of f_i = n_i . v_i over the continuous workspace and "
@@ -139,10 +158,14 @@ DESIGN_SPACE = ProcessDefinition(
         "<= acos(f_max) (eqs 16-19), or that it is degenerate (a line) or empty; the "
         "sub-design spaces in the alpha1-alpha2 plane (Fig. 5) and optionally "
         "mean(1/kappa^2) across one of them (Fig. 6). "
-        + _limits(DESIGN_SPACE_COST_LIMIT, DESIGN_SPACE_TIME_LIMIT_S,
-                  DESIGN_SPACE_SYNC_COST_LIMIT, "betas x (1 for a full turn, "
-                  f"{LIMITED_WIDTH_COST:,} for a limited torsion range) + index-map designs x "
-                  f"(samples + {DESIGN_OVERHEAD})")
+        + _limits(
+            DESIGN_SPACE_COST_LIMIT,
+            DESIGN_SPACE_TIME_LIMIT_S,
+            DESIGN_SPACE_SYNC_COST_LIMIT,
+            "betas x (1 for a full turn, "
+            f"{LIMITED_WIDTH_COST:,} for a limited torsion range) + index-map designs x "
+            f"(samples + {DESIGN_OVERHEAD})",
+        )
     ),
     inputs_model=DesignSpaceSpec,
     run=_run_design_space,
@@ -169,9 +192,16 @@ DESIGN_SPACE = ProcessDefinition(
 )
 
 OPTIMISATION = ProcessDefinition(
-    method_doc="spherical-parallel",
     id="spm-optimisation",
     title="Spherical parallel manipulator: optimum design for a prescribed workspace",
+    method_doc="spherical-parallel",
+    files=(
+        *figure_files("index_map", "mean(1/kappa^2) over the optimum's design space"),
+        *figure_files("starts", "Final mean(1/kappa^2) of every start"),
+        *figure_files("torsion_sweeps", "1/kappa of the optimum along torsion turns"),
+        ProcessFile("optimisation_starts.csv", "Every optimisation start (CSV)"),
+        ProcessFile("optimisation.npz", "Optimisation (NumPy arrays)"),
+    ),
     description=(
         "Maximises mean(1/kappa^2) over the workspace samples (eq 28) by nonlinear least "
         "squares from several seeded starts in the design space, over the free parameters "
@@ -182,12 +212,18 @@ OPTIMISATION = ProcessDefinition(
         "(eq 30). Reports the optimum with its indices and its twin optima, every start "
         "(converged or not, with the solver's message), the evaluations spent, and for the "
         "paper's examples its designs scored on the same samples (notes say where the "
-        "optimum beats them). " + _SAMPLING + " "
-        + _limits(OPTIMISATION_COST_LIMIT, OPTIMISATION_TIME_LIMIT_S, 0,
-                  "starts x (max_evaluations_per_start x (1 + free variables) + "
-                  f"{SCREEN_PER_START} screened candidates) x (samples + "
-                  f"{DESIGN_OVERHEAD}, + {LIMITED_WIDTH_COST:,} when a limited torsion range "
-                  "meets a free beta or gamma) + the figures")
+        "optimum beats them). "
+        + _SAMPLING
+        + " "
+        + _limits(
+            OPTIMISATION_COST_LIMIT,
+            OPTIMISATION_TIME_LIMIT_S,
+            0,
+            "starts x (max_evaluations_per_start x (1 + free variables) + "
+            f"{SCREEN_PER_START} screened candidates) x (samples + "
+            f"{DESIGN_OVERHEAD}, + {LIMITED_WIDTH_COST:,} when a limited torsion range "
+            "meets a free beta or gamma) + the figures",
+        )
     ),
     inputs_model=OptimisationSpec,
     run=_run_optimisation,
