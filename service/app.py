@@ -22,7 +22,12 @@ from service.pages import STATIC_DIR, STATIC_PREFIX, Pages, PageSettings
 from service.problems import PROBLEM_TYPES
 from service.request_guard import RequestGuard
 from service.routes import health, job_events, jobs, landing, methods, page_actions, processes
-from service.routes.process_operations import FAMILY_TAGS, execution_router, family_of
+from service.routes.process_operations import (
+    FAMILY_TAGS,
+    execution_router,
+    family_of,
+    family_tag_documents,
+)
 from worker.dispatch import Dispatcher, make_dispatcher
 from worker.pool import WorkerPool
 from worker.processes import default_registry
@@ -106,7 +111,7 @@ def create_app(settings: ServiceSettings | None = None) -> FastAPI:
         redoc_url=None,
         openapi_tags=[
             {"name": "processes", "description": "What dexlab runs; the generic execute."},
-            *({"name": tag, "description": text} for tag, text in FAMILY_TAGS.values()),
+            *family_tag_documents(registry),
             {"name": "jobs", "description": "Status, results, artifacts, dismissal."},
             {"name": "health", "description": "Liveness and readiness probes."},
             {"name": "OGC API – Processes", "description": "OGC API - Processes - Part 1: "

@@ -18,7 +18,14 @@ from service.deps import DispatcherDep, RegistryDep, SettingsDep, StoreDep
 from service.routes.processes import ExecuteRequest, execute
 from worker.processes import ProcessDefinition, ProcessRegistry
 
-__all__ = ["FAMILY_PAPERS", "FAMILY_TAGS", "execution_router", "family_of", "family_tag"]
+__all__ = [
+    "FAMILY_PAPERS",
+    "FAMILY_TAGS",
+    "execution_router",
+    "family_of",
+    "family_tag",
+    "family_tag_documents",
+]
 
 #: The paper each family reproduces, as example summaries name it.
 FAMILY_PAPERS: dict[str, str] = {
@@ -33,23 +40,21 @@ FAMILY_TAGS: dict[str, tuple[str, str]] = {
     "planar3r": (
         "Three-link planar serial arms",
         "Patel & Sobh: synthesis from task points or a trajectory, dexterity maps, "
-        "joint limits (docs/methods/planar-serial.md).",
+        "joint limits.",
     ),
     "planar2dof": (
         "2-DOF planar parallel robots",
         "Huang et al. 2004: conditioning and pressure-angle maps, the workspace bounded "
-        "by a conditioning limit, the largest rectangle, η, the optimum "
-        "(docs/methods/planar-parallel.md).",
+        "by a conditioning limit, the largest rectangle, η, the optimum.",
     ),
     "spm": (
         "Spherical parallel manipulators",
         "Bai 2010: kinematics, conditioning over an orientation workspace, the design "
-        "space and the optimum design (docs/methods/spherical-parallel.md).",
+        "space and the optimum design.",
     ),
     "chains": (
         "Kinematic chains",
-        "Parallelism measures P and Q; Grashof classification of four-bars "
-        "(docs/methods/chains.md).",
+        "Parallelism measures P and Q; Grashof classification of four-bars.",
     ),
 }
 
@@ -58,6 +63,16 @@ def family_of(definition: ProcessDefinition) -> str:
     """The family package a process belongs to (``worker.jobs.<family>``)."""
     parts = definition.run.__module__.split(".")
     return parts[2] if len(parts) > 2 and parts[:2] == ["worker", "jobs"] else "other"
+
+
+def family_tag_documents(registry: ProcessRegistry) -> list[dict[str, Any]]:
+    """The OpenAPI tags of the families, each linking its method page (Markdown)."""
+    tags = []
+    for family, (tag, text) in FAMILY_TAGS.items():
+        docs = {d.method_doc for d in registry if family_of(d) == family and d.method_doc}
+        links = " ".join(f"[The method: equations, errata](/methods/{doc})." for doc in docs)
+        tags.append({"name": tag, "description": f"{text} {links}".strip()})
+    return tags
 
 
 def family_tag(definition: ProcessDefinition) -> str:
