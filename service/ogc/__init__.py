@@ -10,6 +10,7 @@ documents: a job created through one is visible through the other.
 - :mod:`service.ogc.execute_request`, :mod:`service.ogc.execution_mode`,
   :mod:`service.ogc.execution` -- execute requests, sync/async, results;
 - :mod:`service.ogc.job_query` -- the job-list parameters;
+- :mod:`service.ogc.pages` -- every GET resource as a page (conformance class ``html``);
 - :mod:`service.ogc.forwarded`, :mod:`service.ogc.urls` -- absolute URLs behind proxies;
 - :mod:`service.ogc.outbound`, :mod:`service.ogc.callbacks` -- the allow-listed
   requests the server makes (inputs by reference, subscriber callbacks);

@@ -6,7 +6,7 @@ from collections.abc import Sequence
 from datetime import datetime
 from typing import Any
 
-from service.ogc.urls import PublicUrls
+from service.ogc.urls import PublicUrls, self_and_alternate
 from service.ogc.vocabulary import JSON, REL_EXCEPTIONS, REL_RESULTS
 from worker.contract import JobRecord, JobStatus
 
@@ -18,11 +18,12 @@ def _iso(value: datetime) -> str:
 
 
 def status_info(job: JobRecord, urls: PublicUrls) -> dict[str, Any]:
-    """Where a job is: status, progress, the times known so far, and links to itself,
-    the job list, its process and (when finished) its results or its exception."""
+    """Where a job is: status, progress, the times known so far, and links to itself
+    (as JSON and as a page), the job list, its process and (when finished) its results
+    or its exception."""
     href = urls.job(job.job_id)
     links = [
-        {"href": href, "rel": "self", "type": JSON, "title": "this status information"},
+        *self_and_alternate(href, "this status information"),
         {"href": f"{urls.ogc}/jobs", "rel": "up", "type": JSON, "title": "the job list"},
         {
             "href": urls.process(job.process_id),
@@ -71,8 +72,9 @@ def status_info(job: JobRecord, urls: PublicUrls) -> dict[str, Any]:
 def job_list(
     jobs: Sequence[JobRecord], urls: PublicUrls, self_href: str, next_href: str | None
 ) -> dict[str, Any]:
-    """A page of jobs, newest first, with ``self`` and, when more remain, ``next``."""
-    links = [{"href": self_href, "rel": "self", "type": JSON, "title": "this page of jobs"}]
+    """A page of jobs, newest first, with ``self``, ``alternate`` (the page as HTML)
+    and, when more remain, ``next``."""
+    links = self_and_alternate(self_href, "this page of jobs")
     if next_href is not None:
         links.append({"href": next_href, "rel": "next", "type": JSON, "title": "the next page"})
     return {"jobs": [status_info(job, urls) for job in jobs], "links": links}

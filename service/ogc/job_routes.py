@@ -11,13 +11,17 @@ from starlette.responses import Response, StreamingResponse
 
 from service.deps import RegistryDep, StoreDep
 from service.documents import artifact_headers
+from service.ogc import pages as ogc_pages
+from service.ogc.execute_request import Presentation
 from service.ogc.execution import finished_job, job_results
 from service.ogc.job_documents import job_list, status_info
 from service.ogc.job_query import MAX_PAGE, listing_filter, page_query, parse_datetime_interval
 from service.ogc.outputs import process_outputs
+from service.ogc.results import select_outputs
 from service.ogc.schemas import ARTIFACT_CONTENT, RESULTS_SCHEMA, OgcJobList, OgcStatusInfo
 from service.ogc.urls import public_urls
 from service.ogc.vocabulary import JSON, OGC_PREFIX, TAG
+from service.pages import FormatQuery, PagesDep, wants_html
 from worker.contract import JobStatus
 from worker.errors import NoSuchArtifact, NoSuchJob, NoSuchProcess, StorageError
 from worker.store.sql import decode_cursor
@@ -61,6 +65,7 @@ def list_jobs(
     request: Request,
     store: StoreDep,
     registry: RegistryDep,
+    pages: PagesDep,
     processID: Annotated[
         ProcessIDs | None, Query(description="Only these processes' jobs.")
     ] = None,
@@ -86,7 +91,8 @@ def list_jobs(
         Query(max_length=200, description="Where a `next` link continues."),
         AfterValidator(_cursor),
     ] = None,
-) -> JSONResponse:
+    f: FormatQuery = None,
+) -> Response:
     unknown = sorted(set(processID or ()) - set(registry.ids()))
     if unknown:
         raise NoSuchProcess(f"No process {unknown[0]!r}; available: {', '.join(registry.ids())}.")
@@ -100,14 +106,17 @@ def list_jobs(
     )
     page = store.list_jobs(limit=min(limit, MAX_PAGE), cursor=cursor, where=where)
     urls = public_urls(request)
-    params = list(request.query_params.multi_items())
+    params = [(k, v) for k, v in request.query_params.multi_items() if k != "f"]
     self_href = f"{urls.ogc}/jobs" + (f"?{page_query(params, cursor)}" if params else "")
     next_href = (
         None
         if page.next_cursor is None
         else f"{urls.ogc}/jobs?{page_query(params, page.next_cursor)}"
     )
-    return JSONResponse(job_list(page.jobs, urls, self_href, next_href))
+    document = job_list(page.jobs, urls, self_href, next_href)
+    if wants_html(request):
+        return ogc_pages.job_list_page(request, pages, registry, urls, document, limit)
+    return JSONResponse(document, headers=ogc_pages.NEGOTIATED)
 
 
 _STATUS: dict[int | str, dict[str, Any]] = {
@@ -116,11 +125,23 @@ _STATUS: dict[int | str, dict[str, Any]] = {
 
 
 @router.get("/{jobID}", summary="A job's status", responses=_STATUS, response_model=None)
-def get_job(jobID: str, request: Request, store: StoreDep) -> JSONResponse:
+def get_job(
+    jobID: str,
+    request: Request,
+    store: StoreDep,
+    registry: RegistryDep,
+    pages: PagesDep,
+    f: FormatQuery = None,
+) -> Response:
     job = store.get_job(jobID)
     if job is None:
         raise NoSuchJob(f"No job {jobID!r}.")
-    return JSONResponse(status_info(job, public_urls(request)))
+    urls = public_urls(request)
+    document = status_info(job, urls)
+    if wants_html(request):
+        result = store.get_result(jobID) if job.status is JobStatus.SUCCESSFUL else None
+        return ogc_pages.job_page(request, pages, registry, urls, job, result, document)
+    return JSONResponse(document, headers=ogc_pages.NEGOTIATED)
 
 
 @router.delete(
@@ -154,8 +175,27 @@ _RESULTS: dict[int | str, dict[str, Any]] = {
     responses=_RESULTS,
     response_model=None,
 )
-def get_results(jobID: str, request: Request, store: StoreDep, registry: RegistryDep) -> Response:
-    return job_results(store, registry, jobID, public_urls(request))
+def get_results(
+    jobID: str,
+    request: Request,
+    store: StoreDep,
+    registry: RegistryDep,
+    pages: PagesDep,
+    f: FormatQuery = None,
+) -> Response:
+    urls = public_urls(request)
+    if not wants_html(request):
+        return job_results(store, registry, jobID, urls, headers=ogc_pages.NEGOTIATED)
+    # A page: the job's, with the outputs its request selected (or why there are none).
+    job, result = finished_job(store, jobID)
+    presentation = Presentation.from_json(store.request_options(jobID)[0])
+    definition = registry.get(job.process_id)
+    outputs = process_outputs(definition) if definition is not None else {}
+    selected = select_outputs(job, result, outputs, presentation, store)
+    document = status_info(job, urls)
+    return ogc_pages.results_page(
+        request, pages, registry, urls, job, result, document, selected, presentation.response
+    )
 
 
 _OUTPUT: dict[int | str, dict[str, Any]] = {
@@ -172,20 +212,38 @@ _OUTPUT: dict[int | str, dict[str, Any]] = {
     responses=_OUTPUT,
     response_model=None,
 )
-def get_output(jobID: str, outputID: str, store: StoreDep, registry: RegistryDep) -> Response:
+def get_output(
+    jobID: str,
+    outputID: str,
+    request: Request,
+    store: StoreDep,
+    registry: RegistryDep,
+    pages: PagesDep,
+    f: FormatQuery = None,
+) -> Response:
     job, result = finished_job(store, jobID)
     definition = registry.get(job.process_id)
     spec = process_outputs(definition).get(outputID) if definition is not None else None
+    page = wants_html(request)
     if spec is not None and not spec.artifact and outputID in result:
-        return JSONResponse(result[outputID])
+        if page:
+            urls = public_urls(request)
+            return ogc_pages.output_page(request, pages, urls, job, spec, value=result[outputID])
+        return JSONResponse(result[outputID], headers=ogc_pages.NEGOTIATED)
     stored = store.artifact(jobID, outputID) if spec is not None and spec.artifact else None
     if spec is None or stored is None:
         raise NoSuchArtifact(f"Job {jobID} has no output {outputID!r}.")
+    if page:
+        return ogc_pages.output_page(request, pages, public_urls(request), job, spec, stored=stored)
     try:
         chunks = store.artifact_chunks(jobID, stored)
     except FileNotFoundError as exc:  # dismissed between the two reads
         raise NoSuchJob(f"Job {jobID} was dismissed; its results were deleted.") from exc
     except OSError as exc:
         raise StorageError(f"The output {outputID!r} of job {jobID} cannot be read: {exc}") from exc
-    headers = {**artifact_headers(stored), "Content-Length": str(stored.info.size)}
+    headers = {
+        **artifact_headers(stored),
+        **ogc_pages.NEGOTIATED,
+        "Content-Length": str(stored.info.size),
+    }
     return StreamingResponse(chunks, media_type=stored.info.media_type, headers=headers)

@@ -14,7 +14,7 @@ import json
 from typing import Any
 
 from service.ogc.outputs import process_outputs
-from service.ogc.urls import PublicUrls
+from service.ogc.urls import PublicUrls, self_and_alternate
 from service.ogc.vocabulary import JSON, REL_EXECUTE, REL_PROCESSES
 from worker.processes import ProcessDefinition
 
@@ -57,7 +57,8 @@ def _job_control(definition: ProcessDefinition) -> list[str]:
 
 
 def process_summary(definition: ProcessDefinition, urls: PublicUrls) -> dict[str, Any]:
-    """processSummary.yaml: what the process is and how it can be run."""
+    """processSummary.yaml: what the process is and how it can be run; links to its
+    description, as JSON and as a page."""
     href = urls.process(definition.id)
     return {
         "id": definition.id,
@@ -66,9 +67,7 @@ def process_summary(definition: ProcessDefinition, urls: PublicUrls) -> dict[str
         "version": definition.version,
         "jobControlOptions": _job_control(definition),
         "outputTransmission": ["value", "reference"],
-        "links": [
-            {"href": href, "rel": "self", "type": JSON, "title": "the process description"},
-        ],
+        "links": self_and_alternate(href, "the process description"),
     }
 
 

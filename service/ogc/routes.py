@@ -12,6 +12,7 @@ from starlette.responses import Response
 from service.deps import DispatcherDep, RegistryDep, SettingsDep, StoreDep
 from service.execution import wait_while_connected
 from service.job_watcher import JobWatcher
+from service.ogc import pages as ogc_pages
 from service.ogc.execute_request import OgcExecuteRequest
 from service.ogc.execution import (
     definition_of,
@@ -31,7 +32,7 @@ from service.ogc.schemas import (
     OgcProcessList,
     OgcStatusInfo,
 )
-from service.ogc.urls import public_urls
+from service.ogc.urls import public_urls, self_and_alternate
 from service.ogc.vocabulary import (
     JSON,
     OGC_PREFIX,
@@ -42,6 +43,7 @@ from service.ogc.vocabulary import (
     conformance_classes,
     openapi_media_type,
 )
+from service.pages import FormatQuery, PagesDep, wants_html
 from worker.contract import JobRecord
 from worker.store.base import JobStore
 
@@ -58,7 +60,7 @@ def _landing(request: Request) -> dict[str, Any]:
         "description": "Manipulator kinematic-design processes (dexterity maps, "
         "conditioning maps, optimum designs) as OGC API - Processes - Part 1: Core.",
         "links": [
-            {"href": f"{urls.ogc}/", "rel": "self", "type": JSON, "title": "this document"},
+            *self_and_alternate(f"{urls.ogc}/", "this document"),
             {
                 "href": f"{urls.root}/openapi.json",
                 "rel": "service-desc",
@@ -93,14 +95,21 @@ _LANDING: dict[int | str, dict[str, Any]] = {
 }
 
 
+def _answer_landing(request: Request, pages: PagesDep) -> Response:
+    document = _landing(request)
+    if wants_html(request):
+        return ogc_pages.landing_page(request, pages, public_urls(request), document)
+    return JSONResponse(document, headers=ogc_pages.NEGOTIATED)
+
+
 @router.get("/", summary="Landing page", responses=_LANDING, response_model=None)
-def landing(request: Request) -> JSONResponse:
-    return JSONResponse(_landing(request))
+def landing(request: Request, pages: PagesDep, f: FormatQuery = None) -> Response:
+    return _answer_landing(request, pages)
 
 
 @router.get("", include_in_schema=False, response_model=None)
-def landing_without_slash(request: Request) -> JSONResponse:
-    return JSONResponse(_landing(request))
+def landing_without_slash(request: Request, pages: PagesDep, f: FormatQuery = None) -> Response:
+    return _answer_landing(request, pages)
 
 
 @router.get(
@@ -109,9 +118,14 @@ def landing_without_slash(request: Request) -> JSONResponse:
     responses={200: {"model": OgcConfClasses, "description": "The conformance declaration."}},
     response_model=None,
 )
-def conformance(request: Request, settings: SettingsDep) -> JSONResponse:
+def conformance(
+    request: Request, settings: SettingsDep, pages: PagesDep, f: FormatQuery = None
+) -> Response:
     callbacks = outbound_policy(settings).enabled
-    return JSONResponse({"conformsTo": conformance_classes(callbacks, request.app.openapi_version)})
+    document = {"conformsTo": conformance_classes(callbacks, request.app.openapi_version)}
+    if wants_html(request):
+        return ogc_pages.conformance_page(request, pages, public_urls(request), document)
+    return JSONResponse(document, headers=ogc_pages.NEGOTIATED)
 
 
 @router.get(
@@ -123,22 +137,19 @@ def conformance(request: Request, settings: SettingsDep) -> JSONResponse:
 def list_processes(
     request: Request,
     registry: RegistryDep,
+    pages: PagesDep,
     limit: Annotated[int, Query(ge=1, le=10000, description="Most summaries per page.")] = 10,
     offset: Annotated[
         int, Query(ge=0, le=1_000_000, description="Summaries to skip (next links).")
     ] = 0,
-) -> JSONResponse:
+    f: FormatQuery = None,
+) -> Response:
     urls = public_urls(request)
     definitions = list(registry)
     page = definitions[offset : offset + limit]
-    links = [
-        {
-            "href": f"{urls.ogc}/processes?limit={limit}&offset={offset}",
-            "rel": "self",
-            "type": JSON,
-            "title": "this page of processes",
-        },
-    ]
+    links = self_and_alternate(
+        f"{urls.ogc}/processes?limit={limit}&offset={offset}", "this page of processes"
+    )
     if offset + limit < len(definitions):
         links.append(
             {
@@ -148,8 +159,10 @@ def list_processes(
                 "title": "the next page",
             }
         )
-    processes = [process_summary(d, urls) for d in page]
-    return JSONResponse({"processes": processes, "links": links})
+    document = {"processes": [process_summary(d, urls) for d in page], "links": links}
+    if wants_html(request):
+        return ogc_pages.process_list_page(request, pages, urls, page, document)
+    return JSONResponse(document, headers=ogc_pages.NEGOTIATED)
 
 
 @router.get(
@@ -158,9 +171,19 @@ def list_processes(
     responses={200: {"model": OgcProcess, "description": "The OGC process description."}},
     response_model=None,
 )
-def describe_process(processID: str, request: Request, registry: RegistryDep) -> JSONResponse:
+def describe_process(
+    processID: str,
+    request: Request,
+    registry: RegistryDep,
+    pages: PagesDep,
+    f: FormatQuery = None,
+) -> Response:
     definition = definition_of(registry, processID)
-    return JSONResponse(process_description(definition, public_urls(request)))
+    urls = public_urls(request)
+    document = process_description(definition, urls)
+    if wants_html(request):
+        return ogc_pages.process_page(request, pages, registry, urls, definition, document)
+    return JSONResponse(document, headers=ogc_pages.NEGOTIATED)
 
 
 _EXECUTE_RESPONSES: dict[int | str, dict[str, Any]] = {

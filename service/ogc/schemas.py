@@ -150,17 +150,18 @@ ARTIFACT_CONTENT: dict[str, Any] = {
 
 #: Problem statuses of each route (see service.openapi).
 OGC_ROUTE_PROBLEMS: dict[tuple[str, str], tuple[int, ...]] = {
-    ("get", "/ogc"): (),
-    ("get", "/ogc/"): (),
-    ("get", "/ogc/conformance"): (),
+    # A GET's 400: a bad query parameter (``f`` on every one).
+    ("get", "/ogc"): (400,),
+    ("get", "/ogc/"): (400,),
+    ("get", "/ogc/conformance"): (400,),
     ("get", "/ogc/processes"): (400,),
-    ("get", "/ogc/processes/{processID}"): (404,),
+    ("get", "/ogc/processes/{processID}"): (400, 404),
     ("post", "/ogc/processes/{processID}/execution"): (400, 404, 413, 422, 503, 507),
     ("get", "/ogc/jobs"): (400, 404, 503),
-    ("get", "/ogc/jobs/{jobID}"): (404, 503),
+    ("get", "/ogc/jobs/{jobID}"): (400, 404, 503),
     ("delete", "/ogc/jobs/{jobID}"): (404, 503),
-    ("get", "/ogc/jobs/{jobID}/results"): (404, 503, 507),
-    ("get", "/ogc/jobs/{jobID}/results/{outputID}"): (404, 503, 507),
+    ("get", "/ogc/jobs/{jobID}/results"): (400, 404, 503, 507),
+    ("get", "/ogc/jobs/{jobID}/results/{outputID}"): (400, 404, 503, 507),
 }
 
 

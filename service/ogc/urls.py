@@ -1,16 +1,18 @@
-"""The absolute URLs the façade links to, from the public base of the request."""
+"""The absolute URLs the façade links to, from the public base of the request; and
+the ``self``/``alternate`` pair every document carries (it answers JSON and HTML)."""
 
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Any
 from urllib.parse import quote
 
 from starlette.requests import Request
 
 from service.ogc.forwarded import public_base_url
-from service.ogc.vocabulary import OGC_PREFIX
+from service.ogc.vocabulary import HTML, JSON, OGC_PREFIX
 
-__all__ = ["PublicUrls", "public_urls"]
+__all__ = ["PublicUrls", "public_urls", "self_and_alternate", "with_format"]
 
 
 @dataclass(frozen=True)
@@ -43,3 +45,25 @@ class PublicUrls:
 
 def public_urls(request: Request) -> PublicUrls:
     return PublicUrls(public_base_url(request))
+
+
+def with_format(href: str, f: str) -> str:
+    """``href`` with its ``f`` query parameter set to ``f`` (any other kept as it is):
+    the URL of one representation of the resource."""
+    path, _, query = href.partition("?")
+    kept = [part for part in query.split("&") if part and not part.startswith("f=")]
+    return f"{path}?{'&'.join([*kept, f'f={f}'])}"
+
+
+def self_and_alternate(href: str, title: str) -> list[dict[str, Any]]:
+    """The links of a JSON document at ``href`` titled ``title``: itself (``self``),
+    and the same resource as a page (``alternate``, ``f=html``)."""
+    return [
+        {"href": href, "rel": "self", "type": JSON, "title": title},
+        {
+            "href": with_format(href, "html"),
+            "rel": "alternate",
+            "type": HTML,
+            "title": f"{title} as HTML",
+        },
+    ]

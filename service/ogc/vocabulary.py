@@ -10,6 +10,7 @@ __all__ = [
     "CALLBACK_CONFORMANCE",
     "CONFORMANCE",
     "EXCEPTION_TYPES",
+    "HTML",
     "JSON",
     "OAS30_CONFORMANCE",
     "OGC_PREFIX",
@@ -34,13 +35,15 @@ TAG = "OGC API – Processes"
 
 _CONF = "http://www.opengis.net/spec/ogcapi-processes-1/1.0/conf/"
 
-#: The conformance classes this service always meets.  ``html`` is not claimed (the
-#: /ogc resources answer JSON only); ``oas30`` only while the served definition is
-#: OpenAPI 3.0, ``callback`` only while callbacks are on (:func:`conformance_classes`).
+#: The conformance classes this service always meets (``html``: every GET resource
+#: also answers a page, :mod:`service.ogc.pages`); ``oas30`` only while the served
+#: definition is OpenAPI 3.0, ``callback`` only while callbacks are on
+#: (:func:`conformance_classes`).
 CONFORMANCE: tuple[str, ...] = (
     _CONF + "core",
     _CONF + "ogc-process-description",
     _CONF + "json",
+    _CONF + "html",
     _CONF + "job-list",
     _CONF + "dismiss",
 )
@@ -62,6 +65,7 @@ EXCEPTION_TYPES: dict[str, str] = {
 }
 
 JSON = "application/json"
+HTML = "text/html"
 
 
 def openapi_media_type(version: str) -> str:

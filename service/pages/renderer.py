@@ -9,7 +9,8 @@ so to the browser as well).
 from __future__ import annotations
 
 import json
-from collections.abc import Callable, Mapping
+import re
+from collections.abc import Callable, Iterable, Mapping
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Annotated, Any
@@ -49,6 +50,11 @@ class Family:
     description: str
     processes: tuple[ProcessDefinition, ...]
 
+    @property
+    def method_docs(self) -> list[str]:
+        """The method pages of its processes, in order, each once."""
+        return list(dict.fromkeys(p.method_doc for p in self.processes if p.method_doc))
+
 
 def _file_size(size: int) -> str:
     value = float(size)
@@ -71,6 +77,16 @@ def _when(value: str | None) -> str:
     return f"{date} {time[:8]} UTC" if time else date
 
 
+_METHOD_PATH = re.compile(r"docs/methods/([a-z0-9-]+)\.md")
+
+
+def link_method_pages(text: str) -> Markup:
+    """Escape ``text`` and turn each repository path of a method page
+    (``docs/methods/<slug>.md``) into a link to the page this service serves."""
+    escaped = str(Markup.escape(text))
+    return Markup(_METHOD_PATH.sub(r'<a href="/methods/\1">the method page</a>', escaped))
+
+
 def _environment() -> jinja2.Environment:
     env = jinja2.Environment(
         loader=jinja2.FileSystemLoader(_TEMPLATES),
@@ -83,6 +99,7 @@ def _environment() -> jinja2.Environment:
     env.filters["pretty_json"] = _pretty_json
     env.filters["filesize"] = _file_size
     env.filters["when"] = _when
+    env.filters["method_links"] = link_method_pages
     env.globals["static"] = lambda path: f"{STATIC_PREFIX}/{path}"
     return env
 
@@ -103,11 +120,11 @@ class Pages:
         self._family_of = family_of
         self._env = _environment()
 
-    def families(self, registry: ProcessRegistry) -> list[Family]:
-        """The registry's processes by family, families in their documented order
-        (processes of no known family last, under "Other processes")."""
+    def families(self, definitions: ProcessRegistry | Iterable[ProcessDefinition]) -> list[Family]:
+        """The processes (a registry's, or some of them) by family, families in their
+        documented order (processes of no known family last, under "Other processes")."""
         grouped: dict[str, list[ProcessDefinition]] = {}
-        for definition in registry:
+        for definition in definitions:
             grouped.setdefault(self._family_of(definition), []).append(definition)
         order = [*self._family_tags, *sorted(k for k in grouped if k not in self._family_tags)]
         return [

@@ -105,9 +105,12 @@ def process_page(
     *,
     examples: Sequence[ExampleForm] | None = None,
     status_code: int = 200,
+    template: str = "process.html",
+    extra: Mapping[str, Any] | None = None,
 ) -> HTMLResponse:
     """A process's page; ``examples`` replaces the worked-example forms (a re-rendered
-    form keeps the user's text and shows its problem)."""
+    form keeps the user's text and shows its problem); ``template`` (one extending
+    process.html) draws it with ``extra`` added to its context."""
     family = next(
         (f.title for f in pages.families(registry) if definition in f.processes), "Processes"
     )
@@ -118,8 +121,9 @@ def process_page(
         "method": method,
         "examples": examples if examples is not None else example_forms(definition),
         "inputs": input_rows(definition.inputs_schema),
+        **(extra or {}),
     }
-    return pages.render(request, "process.html", context, status_code=status_code)
+    return pages.render(request, template, context, status_code=status_code)
 
 
 def job_list_page(
@@ -211,9 +215,13 @@ def job_page(
     registry: ProcessRegistry,
     job: JobRecord,
     result: Mapping[str, Any] | None,
+    *,
+    template: str = "job.html",
+    extra: Mapping[str, Any] | None = None,
 ) -> HTMLResponse:
     """A job's page: status (live while it runs), the failure, the plots, the notes,
-    the result as tables, the downloads and the inputs."""
+    the result as tables, the downloads and the inputs; ``template`` (one extending
+    job.html) draws it with ``extra`` added to its context."""
     document = status_document(job)
     definition = registry.get(job.process_id)
     finished = job.status in (JobStatus.SUCCESSFUL, JobStatus.FAILED)
@@ -244,7 +252,8 @@ def job_page(
                 {**a, "download": a["media_type"] in _DOWNLOADS} for a in results["artifacts"]
             ],
         )
-    return pages.render(request, "job.html", context)
+    context.update(extra or {})
+    return pages.render(request, template, context)
 
 
 def method_list_page(request: Request, pages: Pages, registry: ProcessRegistry) -> HTMLResponse:

@@ -152,6 +152,10 @@ async def test_landing_conformance_and_processes(pool: httpx.AsyncClient) -> Non
         OgcLandingPage.model_validate(landing)
     rels = {link["rel"]: link for link in landing["links"]}
     assert rels["self"]["href"] == "http://dexlab.test/ogc/"
+    assert (rels["alternate"]["href"], rels["alternate"]["type"]) == (
+        "http://dexlab.test/ogc/?f=html",
+        "text/html",
+    )
     assert rels["service-desc"]["href"] == "http://dexlab.test/openapi.json"
     assert rels["service-desc"]["type"] == "application/vnd.oai.openapi+json;version=3.1"
     assert (rels["service-doc"]["href"], rels["service-doc"]["type"]) == (
@@ -165,11 +169,14 @@ async def test_landing_conformance_and_processes(pool: httpx.AsyncClient) -> Non
     assert openapi["openapi"].startswith("3.1")
     conformance = (await pool.get("/ogc/conformance")).json()
     OgcConfClasses.model_validate(conformance)
-    expected = ["core", "ogc-process-description", "json", "job-list", "dismiss", "callback"]
+    expected = [
+        "core", "ogc-process-description", "json", "html", "job-list", "dismiss", "callback",
+    ]  # fmt: skip
     assert conformance["conformsTo"] == [CONF + c for c in expected]  # no oas30: 3.1 is served
     listing = (await pool.get("/ogc/processes")).json()
     OgcProcessList.model_validate(listing)
-    assert len(listing["processes"]) == 9 and [link["rel"] for link in listing["links"]] == ["self"]
+    rels_of_list = [link["rel"] for link in listing["links"]]
+    assert len(listing["processes"]) == 9 and rels_of_list == ["self", "alternate"]
     page = (await pool.get("/ogc/processes", params={"limit": 4, "offset": 4})).json()
     assert [p["id"] for p in page["processes"]] == [p["id"] for p in listing["processes"][4:8]]
     (after,) = [link for link in page["links"] if link["rel"] == "next"]
@@ -590,7 +597,10 @@ async def test_links_follow_a_trusted_proxy_only(idle: httpx.AsyncClient) -> Non
     public = f"https://dexlab.example.org/kinematics/ogc/jobs/{job_id}"
     assert r.headers["location"] == public and r.json()["links"][0]["href"] == public
     landing = (await idle.get("/ogc/", headers=headers)).json()
-    assert landing["links"][1]["href"] == "https://dexlab.example.org/kinematics/openapi.json"
+    rels = {link["rel"]: link["href"] for link in landing["links"]}
+    assert rels["service-desc"] == "https://dexlab.example.org/kinematics/openapi.json"
+    page = (await idle.get("/ogc/", params={"f": "html"}, headers=headers)).text
+    assert 'href="https://dexlab.example.org/kinematics/ogc/conformance"' in page
     app = idle.app  # type: ignore[attr-defined]
     outsider = httpx.ASGITransport(app=app, client=("198.51.100.7", 4444))
     async with httpx.AsyncClient(transport=outsider, base_url="http://dexlab.test") as c:

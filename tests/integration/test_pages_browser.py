@@ -155,3 +155,43 @@ def test_pages_fit_a_phone_and_read_without_javascript(
         assert page.locator("article.prose math").count() > 0
         page.screenshot(path=str(shots / "method-page-no-js.png"))
         assert not external, external
+
+
+def test_the_ogc_pages_lead_to_working_pages(
+    job_url: str, server: Deployment, browser: Any, shots: Path
+) -> None:
+    """/ogc/ as a page: every link of it answers; the OGC job list leads to the job's
+    page with its plot; the pages fit a phone; nothing leaves 127.0.0.1."""
+    job_id = urlsplit(job_url).path.rsplit("/", 1)[-1]
+    with open_page(browser, width=1280, height=900) as offline:
+        page = offline.page
+        page.goto(f"{server.base_url}/ogc/?f=html")
+        assert page.locator("h1").inner_text() == server.client.get("/ogc/").json()["title"]
+        page.screenshot(path=str(shots / "ogc-landing.png"), full_page=True)
+        hrefs = page.locator("main a").evaluate_all("anchors => anchors.map(a => a.href)")
+        assert len(hrefs) >= 8, hrefs
+        for href in hrefs:
+            response = page.goto(href)
+            assert response is not None and response.ok, href
+        page.goto(f"{server.base_url}/ogc/jobs?f=html")
+        page.locator(f'a[href$="/ogc/jobs/{job_id}?f=html"]').first.click()
+        page.wait_for_selector("figure.plot img", timeout=TIMEOUT_MS)
+        assert page.locator("section[aria-labelledby='links-title'] a").count() >= 5
+        page.screenshot(path=str(shots / "ogc-job-page.png"), full_page=True)
+        assert not offline.external and not offline.console_errors, offline
+    with open_page(browser, width=375, height=800) as offline:
+        for path in (
+            "/ogc/",
+            "/ogc/conformance",
+            "/ogc/processes",
+            f"/ogc/processes/{PROCESS}",
+            "/ogc/jobs",
+            f"/ogc/jobs/{job_id}",
+            f"/ogc/jobs/{job_id}/results",
+        ):
+            offline.page.goto(f"{server.base_url}{path}?f=html")
+            overflow = offline.page.evaluate(
+                "document.documentElement.scrollWidth - document.documentElement.clientWidth"
+            )
+            assert overflow <= 0, (path, overflow)
+        assert not offline.external and not offline.console_errors, offline

@@ -99,8 +99,10 @@ def test_status_info_links_and_times() -> None:
     queued = status_info(job(JobStatus.ACCEPTED), URLS)
     OgcStatusInfo.model_validate(queued)
     assert queued["created"] == "2024-05-04T10:13:00Z" and "started" not in queued
-    assert [link["rel"] for link in queued["links"]] == ["self", "up", "describedby"]
+    assert [link["rel"] for link in queued["links"]] == ["self", "alternate", "up", "describedby"]
     assert queued["links"][0]["href"] == "https://dexlab.example.org/kin/ogc/jobs/j1"
+    assert queued["links"][1]["href"] == "https://dexlab.example.org/kin/ogc/jobs/j1?f=html"
+    assert queued["links"][1]["type"] == "text/html"
     done = status_info(
         job(
             JobStatus.SUCCESSFUL,
@@ -121,4 +123,4 @@ def test_status_info_links_and_times() -> None:
     assert failed["links"][-1]["rel"] == REL_EXCEPTIONS
     page = job_list([job(JobStatus.RUNNING)], URLS, f"{URLS.ogc}/jobs", f"{URLS.ogc}/jobs?cursor=x")
     OgcJobList.model_validate(page)
-    assert [link["rel"] for link in page["links"]] == ["self", "next"]
+    assert [link["rel"] for link in page["links"]] == ["self", "alternate", "next"]

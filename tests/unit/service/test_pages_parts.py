@@ -270,3 +270,11 @@ def test_the_shipped_method_pages_render() -> None:
         assert page.summary_html and page.citation_html, slug
         assert "<math" in page.html, slug
         assert '<code class="tex">' not in page.html, f"{slug}: a formula did not convert"
+
+
+def test_method_paths_in_descriptions_become_links_and_the_rest_is_escaped() -> None:
+    from service.pages.renderer import link_method_pages
+
+    html = str(link_method_pages("See docs/methods/planar-serial.md, <b>not</b> docs/x.md."))
+    assert '<a href="/methods/planar-serial">the method page</a>' in html
+    assert "&lt;b&gt;not&lt;/b&gt; docs/x.md" in html
