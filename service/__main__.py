@@ -1,3 +1,3 @@
-from service.cli import main
+from dexlab.cli import main
 
 main()
