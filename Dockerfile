@@ -6,6 +6,7 @@ WORKDIR /app
 COPY pyproject.toml README.md ./
 COPY service ./service
 COPY worker ./worker
+COPY dexlab ./dexlab
 # The same install as the README's, with the scale-out extra (Celery, Redis/AMQP
 # clients, psycopg) so one image serves as API or worker, embedded or distributed.
 RUN pip install --no-cache-dir '.[distributed]'
@@ -14,6 +15,9 @@ RUN pip install --no-cache-dir '.[distributed]'
 # after the install, so that editing a page does not redo it).
 COPY docs ./docs
 ENV DEXLAB_DOCS_DIR=/app/docs
+# Logs as JSON lines (one object a line: time, level, logger, message, request_id,
+# job_id) for a log shipper; DEXLAB_LOG_FORMAT=text for readable lines.
+ENV DEXLAB_LOG_FORMAT=json
 
 RUN useradd --create-home dexlab && mkdir /data && chown dexlab /data
 USER dexlab

@@ -1,9 +1,68 @@
-"""dexlab for its users: the ``dexlab`` command line (and, later, a Python client).
+"""dexlab for its users: a Python client (sync and async) and the ``dexlab`` command.
+
+::
+
+    from dexlab import Client
+
+    with Client() as client:         # DEXLAB_URL (http://127.0.0.1:8000), DEXLAB_API_KEY
+        job = client.run("planar2dof-conditioning-map", example=0)
+        maps = job.arrays("conditioning_map.npz")   # x, y, inverse_condition, ...
 
 Importing this package does no work and imports neither the server nor the worker: the
 server-side commands (``dexlab serve``, ``dexlab worker``) import them when they run.
+The client needs httpx (and numpy for :meth:`Job.arrays`).
 """
 
 from __future__ import annotations
 
-__all__: list[str] = []
+from dexlab.async_client import AsyncClient, AsyncJob
+from dexlab.client import Client
+from dexlab.documents import Artifact, JobStatus
+from dexlab.errors import (
+    CostLimitExceeded,
+    DexlabError,
+    IdempotencyConflict,
+    InvalidInputs,
+    JobDismissed,
+    JobFailed,
+    NoSuchArtifact,
+    NoSuchJob,
+    NoSuchProcess,
+    NotFound,
+    QuotaExceeded,
+    RequestRefused,
+    ResultNotReady,
+    ServiceUnavailable,
+    ServiceUnreachable,
+    Unauthorized,
+    WaitTimeout,
+)
+from dexlab.job import Job
+from dexlab.retry import RetryPolicy
+
+__all__ = [
+    "Artifact",
+    "AsyncClient",
+    "AsyncJob",
+    "Client",
+    "CostLimitExceeded",
+    "DexlabError",
+    "IdempotencyConflict",
+    "InvalidInputs",
+    "Job",
+    "JobDismissed",
+    "JobFailed",
+    "JobStatus",
+    "NoSuchArtifact",
+    "NoSuchJob",
+    "NoSuchProcess",
+    "NotFound",
+    "QuotaExceeded",
+    "RequestRefused",
+    "ResultNotReady",
+    "RetryPolicy",
+    "ServiceUnavailable",
+    "ServiceUnreachable",
+    "Unauthorized",
+    "WaitTimeout",
+]

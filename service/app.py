@@ -8,20 +8,34 @@ from contextlib import asynccontextmanager
 from typing import TYPE_CHECKING
 
 from fastapi import FastAPI
+from fastapi.middleware.cors import CORSMiddleware
 from fastapi.responses import JSONResponse
 from fastapi.staticfiles import StaticFiles
 
 from service.api_docs import install_api_docs
+from service.auth.gate import AuthGate
+from service.auth.startup import start_auth
 from service.config import ServiceSettings
 from service.errors import install_error_handlers, problem_response
 from service.job_watcher import JobWatcher
+from service.metrics import MetricsSettings, install_metrics
 from service.ogc.forwarded import ForwardedHeaders
 from service.ogc.router import ogc_router
 from service.openapi import install_openapi
 from service.pages import STATIC_DIR, STATIC_PREFIX, Pages, PageSettings
 from service.problems import PROBLEM_TYPES
 from service.request_guard import RequestGuard
-from service.routes import health, job_events, jobs, landing, methods, page_actions, processes
+from service.request_id import RequestId
+from service.routes import (
+    health,
+    job_events,
+    jobs,
+    landing,
+    login,
+    methods,
+    page_actions,
+    processes,
+)
 from service.routes.process_operations import (
     FAMILY_TAGS,
     execution_router,
@@ -76,6 +90,7 @@ def create_app(settings: ServiceSettings | None = None) -> FastAPI:
     @asynccontextmanager
     async def lifespan(app: FastAPI) -> AsyncIterator[None]:
         store = open_store(settings.resolved_store_url(), retry_s=settings.store_retry_seconds)
+        app.state.auth = start_auth(settings, store)  # keys, sessions (service.auth)
         dispatcher = make_dispatcher(settings, store)
         # With a broker, this process serves the API only; Celery workers run the jobs
         # and a sweeper here re-sends jobs whose worker died.
@@ -89,6 +104,9 @@ def create_app(settings: ServiceSettings | None = None) -> FastAPI:
         app.state.dispatcher = dispatcher
         app.state.watcher = JobWatcher(store)
         app.state.watcher.start()
+        if metrics is not None:  # job figures from the store, whoever runs the jobs
+            metrics.watch_store(store, [d.id for d in registry],
+                                live_within_s=3 * settings.heartbeat_seconds + 1.0)  # fmt: skip
         if pool is not None:
             pool.start()
         try:
@@ -100,6 +118,8 @@ def create_app(settings: ServiceSettings | None = None) -> FastAPI:
             if sweeper is not None:
                 sweeper.stop()
             dispatcher.close()
+            if metrics is not None:
+                metrics.unwatch_store()
             store.close()
 
     app = FastAPI(
@@ -113,7 +133,7 @@ def create_app(settings: ServiceSettings | None = None) -> FastAPI:
             {"name": "processes", "description": "What dexlab runs; the generic execute."},
             *family_tag_documents(registry),
             {"name": "jobs", "description": "Status, results, artifacts, dismissal."},
-            {"name": "health", "description": "Liveness and readiness probes."},
+            {"name": "health", "description": "Liveness and readiness probes; metrics."},
             {"name": "OGC API – Processes", "description": "OGC API - Processes - Part 1: "
              "Core at /ogc/: the same processes and jobs in the standard's documents."},
             {"name": "meta", "description": "The landing page and problem types."},
@@ -128,8 +148,24 @@ def create_app(settings: ServiceSettings | None = None) -> FastAPI:
         max_body_bytes=settings.max_body_bytes,
         max_json_depth=settings.max_json_depth,
     )
+    # Who is asking (API key, session cookie), before any route: 401 without a key.
+    app.add_middleware(AuthGate)
+    origins = ServiceSettings.origin_list(settings.cors_origins)
+    if origins:  # browser clients on other origins, with the Authorization header
+        app.add_middleware(
+            CORSMiddleware,
+            allow_origins=origins,
+            allow_methods=["GET", "POST", "DELETE"],
+            allow_headers=["Authorization", "Content-Type", "Idempotency-Key", "Prefer"],
+            expose_headers=["Location", "Retry-After", "Idempotent-Replayed",
+                            "Preference-Applied", "Link", "WWW-Authenticate"],
+            max_age=600,
+        )  # fmt: skip
     # Outermost: a trusted proxy's X-Forwarded-* headers, before anything reads the URL.
     app.add_middleware(ForwardedHeaders, trusted=settings.forwarded_allow_ips)
+    # Around it all: /metrics and each request's latency, then the request's ID (logs).
+    metrics = install_metrics(app) if MetricsSettings().metrics else None
+    app.add_middleware(RequestId)
     app.include_router(execution_router(registry))
     app.include_router(processes.router)
     app.include_router(jobs.router)
@@ -141,6 +177,7 @@ def create_app(settings: ServiceSettings | None = None) -> FastAPI:
     app.include_router(job_events.router)
     app.include_router(methods.router)
     app.include_router(page_actions.router)
+    app.include_router(login.router)
     app.mount(STATIC_PREFIX, StaticFiles(directory=STATIC_DIR), name="pages-static")
 
     @app.get("/problems/{slug}", tags=["meta"], summary="What a problem type means")

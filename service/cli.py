@@ -2,20 +2,19 @@
 
 The command line itself is :mod:`dexlab.cli`; these functions are what its server
 commands call, with the options the user gave (unset options come from the
-environment, ``DEXLAB_*``).
+environment, ``DEXLAB_*``).  Each configures its process's logging first
+(:mod:`worker.logs`, ``DEXLAB_LOG_FORMAT``); uvicorn's access and error logs and the
+Celery worker's lines use the same format.
 """
 
 from __future__ import annotations
 
-import logging
 import signal
 import sys
 import threading
 from typing import Any
 
 __all__ = ["run_worker", "serve"]
-
-_FORMAT = "%(asctime)s %(process)d %(name)s %(levelname)s %(message)s"
 
 
 def serve(options: dict[str, Any]) -> None:
@@ -24,9 +23,10 @@ def serve(options: dict[str, Any]) -> None:
 
     from service.app import create_app
     from service.config import ServiceSettings
+    from worker.logs import configure_logging
 
     settings = ServiceSettings(**options)
-    logging.basicConfig(level=settings.log_level.upper(), format=_FORMAT)
+    log_config = configure_logging(level=settings.log_level)
     # A client still holding a ``Prefer: wait`` open when the server stops is cut off
     # after this grace (its job is committed; it polls it later).
     # X-Forwarded-* are applied by the app (service.ogc.forwarded), from the proxies in
@@ -36,6 +36,7 @@ def serve(options: dict[str, Any]) -> None:
         host=settings.host,
         port=settings.port,
         log_level=settings.log_level.lower(),
+        log_config=log_config,
         timeout_graceful_shutdown=10,
         proxy_headers=False,
     )
@@ -43,19 +44,21 @@ def serve(options: dict[str, Any]) -> None:
 
 def run_worker(options: dict[str, Any], log_level: str = "info") -> int:
     """``dexlab worker``: worker processes against a store; the exit status."""
+    from worker.logs import LogSettings, configure_logging
     from worker.pool import WorkerPool
     from worker.settings import WorkerSettings
     from worker.store import open_store
 
     settings = WorkerSettings(**options)
-    logging.basicConfig(level=log_level.upper(), format=_FORMAT)
+    log_format = LogSettings().log_format
+    configure_logging(log_format, level=log_level)
     if settings.workers < 1:
         sys.stderr.write("dexlab worker: --workers must be at least 1\n")
         return 2
     if settings.broker_url:
         from worker.dispatch.celery_worker import run_celery_worker
 
-        run_celery_worker(settings, log_level.upper())
+        run_celery_worker(settings, log_level.upper(), json_lines=log_format == "json")
         return 0
     store = open_store(settings.resolved_store_url(), retry_s=settings.store_retry_seconds)
     pool = WorkerPool(settings, store)

@@ -2,7 +2,10 @@
 
 from __future__ import annotations
 
-from pydantic import Field, field_validator
+from urllib.parse import urlsplit
+
+from pydantic import Field, SecretStr, field_validator
+from pydantic_settings import SettingsConfigDict
 
 from worker.settings import WorkerSettings
 
@@ -11,6 +14,9 @@ __all__ = ["ServiceSettings"]
 
 class ServiceSettings(WorkerSettings):
     """Settings of ``dexlab serve`` (environment ``DEXLAB_*`` or command-line options)."""
+
+    # A refused value is not echoed in the error: it may hold key secrets.
+    model_config = SettingsConfigDict(hide_input_in_errors=True)
 
     host: str = Field("127.0.0.1", description="Address the HTTP server binds to.")
     port: int = Field(8000, ge=0, le=65535, description="Port the HTTP server listens on.")
@@ -44,6 +50,65 @@ class ServiceSettings(WorkerSettings):
     callback_max_attempts: int = Field(
         5, ge=1, le=50, description="Tries of one callback before it is given up."
     )
+    api_keys: SecretStr = Field(
+        SecretStr(""),
+        description="API keys made in the store at start-up: 'name:secret' entries, "
+        "comma-separated ('name:secret:admin' for an admin).  With any key in the store "
+        "the service needs one; with none it is open.",
+    )
+    session_secret: SecretStr | None = Field(
+        None,
+        description="Signs browser sessions (at least 32 characters); unset: a secret "
+        "generated once and kept in the store, shared by every replica.",
+    )
+    session_seconds: float = Field(
+        12 * 3600.0, ge=60, le=30 * 86400, description="How long a browser login lasts."
+    )
+    cors_origins: str = Field(
+        "",
+        max_length=4096,
+        description="Origins (scheme://host[:port], comma-separated, or '*') whose "
+        "pages may call the API from a browser (CORS, with the Authorization header); "
+        "empty (the default): none.",
+    )
+
+    @field_validator("api_keys")
+    @classmethod
+    def _declared_keys(cls, value: SecretStr) -> SecretStr:
+        from service.auth.seeding import parse_api_keys
+
+        parse_api_keys(value.get_secret_value())  # ValueError names the entry, not its secret
+        return value
+
+    @field_validator("session_secret")
+    @classmethod
+    def _session_secret(cls, value: SecretStr | None) -> SecretStr | None:
+        if value is not None and len(value.get_secret_value()) < 32:
+            raise ValueError("The 'session_secret' setting must be at least 32 characters.")
+        return value
+
+    @field_validator("cors_origins")
+    @classmethod
+    def _origins(cls, value: str) -> str:
+        for origin in cls.origin_list(value):
+            parts = urlsplit(origin)
+            if origin != "*" and (
+                parts.scheme not in ("http", "https")
+                or not parts.netloc
+                or parts.path
+                or parts.query
+                or parts.fragment
+            ):
+                raise ValueError(
+                    "Each of the 'cors_origins' must be scheme://host[:port] or '*'. "
+                    f"Got {origin!r} instead."
+                )
+        return value
+
+    @staticmethod
+    def origin_list(value: str) -> list[str]:
+        """The origins of a ``cors_origins`` value."""
+        return [o.strip().rstrip("/") for o in value.split(",") if o.strip()]
 
     @field_validator("forwarded_allow_ips")
     @classmethod

@@ -20,8 +20,9 @@ def job_href(job_id: str) -> str:
     return f"/v1/jobs/{job_id}"
 
 
-def status_document(job: JobRecord) -> dict[str, Any]:
-    """``GET /v1/jobs/{jobID}``: where the job is, with links."""
+def status_document(job: JobRecord, *, worker: bool = True, owner: bool = False) -> dict[str, Any]:
+    """``GET /v1/jobs/{jobID}``: where the job is, with links; ``worker_id`` when
+    ``worker`` (admins only, with API keys), the job's ``owner`` when ``owner``."""
     links = [
         {
             "href": job_href(job.job_id),
@@ -59,9 +60,12 @@ def status_document(job: JobRecord) -> dict[str, Any]:
         "attempts": job.attempts,
         "max_attempts": job.max_attempts,
         "time_limit_s": job.time_limit_s,
-        "worker_id": job.worker_id,
-        "links": links,
     }
+    if worker:
+        doc["worker_id"] = job.worker_id
+    if owner:
+        doc["owner"] = job.owner
+    doc["links"] = links
     if job.status is JobStatus.FAILED and job.error is not None:
         doc["error"] = {k: job.error[k] for k in ("type", "title", "detail") if k in job.error}
     return doc

@@ -14,6 +14,7 @@ from starlette.exceptions import HTTPException as StarletteHTTPException
 from starlette.responses import Response
 
 from service.allow import allow_header, allowed_methods
+from service.auth.errors import Forbidden, Unauthenticated
 from service.ogc.execute_request import InvalidRequest
 from service.ogc.vocabulary import exception_type, is_ogc_path
 from service.pages.problem_page import as_page_if_asked
@@ -34,13 +35,15 @@ from worker.errors import (
     StoreUnavailable,
 )
 
-__all__ = ["install_error_handlers", "problem_response"]
+__all__ = ["dexlab_problem", "install_error_handlers", "problem_response"]
 
 log = logging.getLogger("dexlab.service")
 
 PROBLEM_JSON = "application/problem+json"
 
 _SLUGS: dict[type[DexlabError], str] = {
+    Unauthenticated: "unauthorized",
+    Forbidden: "forbidden",
     InvalidRequest: "invalid-request",
     InvalidInputs: "invalid-inputs",
     CostLimitExceeded: "cost-limit-exceeded",
@@ -66,8 +69,11 @@ def _slug(exc: DexlabError) -> str:
 
 
 def _retry_headers(exc: DexlabError, extra: dict[str, Any]) -> dict[str, str] | None:
-    """``Retry-After`` (whole seconds) for a store that is down for now."""
+    """``Retry-After`` (whole seconds) for a store that is down for now;
+    ``WWW-Authenticate`` for a request without a valid key."""
     hint = extra.pop("retry_after_s", None)
+    if isinstance(exc, Unauthenticated):
+        return {"WWW-Authenticate": exc.challenge}
     if not isinstance(exc, StoreUnavailable) or isinstance(exc, StorageFull):
         return None
     seconds = hint if isinstance(hint, int | float) and hint > 0 else 5
@@ -76,6 +82,7 @@ def _retry_headers(exc: DexlabError, extra: dict[str, Any]) -> dict[str, str] | 
 
 _HTTP_SLUGS = {
     400: "malformed-request",
+    401: "unauthorized",
     403: "forbidden",
     404: "not-found",
     405: "method-not-allowed",
@@ -138,33 +145,39 @@ def _parameter_status(request: Request, exc: RequestValidationError) -> int | No
     return 400 if is_ogc_path(request.url.path) and not in_body else None
 
 
+def dexlab_problem(request: Request, exc: DexlabError) -> JSONResponse:
+    """The problem document of one of dexlab's exceptions (also used by the auth gate,
+    a middleware that answers before any handler runs)."""
+    slug = _slug(exc)
+    extra: dict[str, Any] = dict(exc.extra)
+    headers = _retry_headers(exc, extra)
+    if isinstance(exc, InvalidInputs):
+        extra["errors"] = exc.errors
+    if isinstance(exc, JobFailed) and "error" in exc.extra:
+        error = dict(exc.extra["error"])
+        slug = str(error.get("type", "job-failed"))
+        extra = {"jobID": exc.extra.get("jobID")}
+        return problem_response(
+            slug if slug in PROBLEM_TYPES else "job-failed",
+            detail=str(error.get("detail", exc.detail)),
+            title=error.get("title"),
+            instance=str(request.url.path),
+            **extra,
+        )
+    if isinstance(exc, StoreUnavailable):
+        log.warning("store trouble on %s: %s", request.url.path, exc.detail)
+    return problem_response(
+        slug, detail=exc.detail, instance=str(request.url.path), headers=headers, **extra
+    )
+
+
 def install_error_handlers(app: FastAPI) -> None:
     """Map every exception to a problem document (a page for a client asking for HTML)."""
 
     @app.exception_handler(DexlabError)
     @_page_if_asked
     async def _dexlab(request: Request, exc: DexlabError) -> JSONResponse:
-        slug = _slug(exc)
-        extra: dict[str, Any] = dict(exc.extra)
-        headers = _retry_headers(exc, extra)
-        if isinstance(exc, InvalidInputs):
-            extra["errors"] = exc.errors
-        if isinstance(exc, JobFailed) and "error" in exc.extra:
-            error = dict(exc.extra["error"])
-            slug = str(error.get("type", "job-failed"))
-            extra = {"jobID": exc.extra.get("jobID")}
-            return problem_response(
-                slug if slug in PROBLEM_TYPES else "job-failed",
-                detail=str(error.get("detail", exc.detail)),
-                title=error.get("title"),
-                instance=str(request.url.path),
-                **extra,
-            )
-        if isinstance(exc, StoreUnavailable):
-            log.warning("store trouble on %s: %s", request.url.path, exc.detail)
-        return problem_response(
-            slug, detail=exc.detail, instance=str(request.url.path), headers=headers, **extra
-        )
+        return dexlab_problem(request, exc)
 
     @app.exception_handler(RequestValidationError)
     @_page_if_asked

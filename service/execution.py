@@ -33,12 +33,13 @@ def submit_job(
     idempotency_key: str | None,
     dispatcher: Dispatcher,
     wants_sync: bool,
+    owner: str = "",
 ) -> tuple[JobRecord, bool, bool]:
-    """Submit (blocking store work, run in the threadpool); ``(job, created, sync)``:
-    ``sync`` when the client asked for a synchronous answer and the process allows one
-    for these inputs (its ``sync_cost_limit``)."""
+    """Submit a job owned by ``owner`` (blocking store work, run in the threadpool);
+    ``(job, created, sync)``: ``sync`` when the client asked for a synchronous answer
+    and the process allows one for these inputs (its ``sync_cost_limit``)."""
     job, created = submit(
-        store, registry, settings, process_id, inputs, idempotency_key, dispatcher
+        store, registry, settings, process_id, inputs, idempotency_key, dispatcher, owner
     )
     synchronous = wants_sync and synchronous_allowed(registry, process_id, inputs)
     return job, created, synchronous

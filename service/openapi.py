@@ -18,6 +18,7 @@ from fastapi import FastAPI
 from fastapi.openapi.utils import get_openapi
 from pydantic.json_schema import models_json_schema
 
+from service.auth.public_routes import is_public
 from service.ogc.schemas import OGC_ROUTE_PROBLEMS, document_process_ids
 from service.problems import PROBLEM_TYPES
 from service.routes.process_operations import FAMILY_PAPERS, family_of
@@ -62,13 +63,14 @@ PROBLEM_SCHEMA: dict[str, Any] = {
 ROUTE_PROBLEMS: dict[tuple[str, str], tuple[int, ...]] = {
     ("get", "/"): (422,),
     ("get", "/v1"): (422,),
+    ("get", "/metrics"): (),
     ("get", "/problems/{slug}"): (404,),
     ("get", "/health/live"): (),
     ("get", "/health/ready"): (503,),
     ("get", "/v1/processes"): (422,),
     ("get", "/v1/processes/{process_id}"): (404, 422),
     ("post", "/v1/processes/{process_id}/execution"): (400, 404, 413, 422, 503, 507),
-    ("get", "/v1/jobs"): (422, 503),
+    ("get", "/v1/jobs"): (403, 422, 503),
     ("get", "/v1/jobs/{job_id}"): (404, 422, 503),
     ("get", "/v1/jobs/{job_id}/events"): (404, 503),
     ("delete", "/v1/jobs/{job_id}"): (404, 503),
@@ -88,6 +90,9 @@ ARTIFACT_MEDIA_TYPES = ("image/png", "image/svg+xml", "text/csv", "application/x
 
 _DESCRIPTIONS = {
     400: "Malformed request: the body is not UTF-8 JSON or nests too deeply.",
+    401: "The service has API keys and the request brought no valid one "
+    "(`WWW-Authenticate: Bearer`).",
+    403: "Refused: a parameter only an admin key may use.",
     404: "No such process, job or artifact, or the result is not ready yet.",
     410: "The job was dismissed; its results are gone.",
     413: "The request body is larger than the service accepts.",
@@ -208,9 +213,22 @@ def _page_alternatives(document: dict[str, Any]) -> None:
                 content["text/html"] = HTML_PAGE
 
 
+#: The Bearer scheme of API keys (``dexlab keys create``).
+SECURITY_SCHEMES: dict[str, Any] = {
+    "apiKey": {
+        "type": "http",
+        "scheme": "bearer",
+        "description": "An API key's secret.  Needed on every operation but the public "
+        "ones once the service has any key; a service without keys is open "
+        "(hence the empty alternative).",
+    }
+}
+
+
 def _rewrite(
     document: dict[str, Any], known: dict[tuple[str, str], tuple[int, ...]]
 ) -> dict[str, Any]:
+    document.setdefault("components", {})["securitySchemes"] = SECURITY_SCHEMES
     schemas = document.setdefault("components", {}).setdefault("schemas", {})
     schemas["ProblemDocument"] = PROBLEM_SCHEMA
     refs, components = document_schemas()
@@ -226,6 +244,9 @@ def _rewrite(
             if statuses is None:
                 statuses = _default_statuses(method, operation)
             responses.pop("422", None)  # FastAPI's validation shape: replaced below
+            if not is_public(method.upper(), path):
+                statuses = (*statuses, 401)
+                operation["security"] = [{"apiKey": []}, {}]
             for status in (*statuses, 500):
                 responses[str(status)] = _problem_response(status)
             if method == "post" and path.endswith("/execution") and path.startswith("/v1/"):

@@ -59,10 +59,18 @@ PROBLEM_TYPES: dict[str, tuple[int, str, str]] = {
     ),
     "not-ready": (503, "Not ready", "The store or the worker pool is not up."),
     "not-found": (404, "Not found", "No resource at this path."),
+    "unauthorized": (
+        401, "Unauthorized",
+        "This service has API keys and the request brought none that is valid: send "
+        "`Authorization: Bearer <secret>` (a browser logs in at /login).  A wrong or "
+        "revoked key, or an ended session, is refused the same way; `WWW-Authenticate` "
+        "names the scheme.",
+    ),
     "forbidden": (
         403, "Forbidden",
         "The request is refused: a page's form posted from another site (the service's "
-        "own pages send a same-origin Origin or Sec-Fetch-Site).",
+        "own pages send a same-origin Origin or Sec-Fetch-Site) or without its session's "
+        "CSRF token, or a parameter only an admin key may use (`owner`).",
     ),
     "method-not-allowed": (405, "Method not allowed", "This path does not accept this method."),
     "internal-error": (500, "Internal error", "An unexpected error; it was logged."),

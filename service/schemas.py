@@ -50,7 +50,16 @@ class StatusDocument(_Document):
     attempts: int
     max_attempts: int
     time_limit_s: float
-    worker_id: str | None
+    worker_id: str | None = Field(
+        None,
+        description="The worker process running or last running the job (host:pid); "
+        "with API keys, shown to admin keys only.",
+    )
+    owner: str | None = Field(
+        None,
+        description="The API key that created the job ('' = anonymous); with API keys, "
+        "shown to admin keys only.",
+    )
     links: list[Link]
     error: JobError | None = None
 

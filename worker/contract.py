@@ -111,3 +111,5 @@ class JobRecord:
     error: Mapping[str, Any] | None = None
     worker_id: str | None = None
     artifacts: tuple[ArtifactInfo, ...] = field(default_factory=tuple)
+    #: The API key name that created the job ('' = anonymous: the open service's owner).
+    owner: str = ""

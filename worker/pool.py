@@ -110,7 +110,12 @@ class WorkerPool:
         slot.liveness = self._ctx.Value("d", 0.0, lock=False)
         proc = self._ctx.Process(
             target=worker_main,
-            args=(self.settings.model_dump(mode="json"), os.getpid(), slot.liveness),
+            args=(
+                self.settings.model_dump(mode="json"),
+                os.getpid(),
+                slot.liveness,
+                logging.getLogger().getEffectiveLevel(),
+            ),
             name=f"dexlab-worker-{index}",
             daemon=False,
         )

@@ -22,6 +22,7 @@ from pydantic import ValidationError
 
 from worker.contract import JobStatus
 from worker.errors import StoreUnavailable
+from worker.logs import configure_logging, log_context
 from worker.processes import ProcessRegistry, default_registry
 from worker.progress import StoreProgress
 from worker.result_commit import commit_outcome, error_document, record_failure
@@ -67,6 +68,10 @@ class AttemptGuard(threading.Thread):
         self._done.set()
 
     def run(self) -> None:
+        with log_context(job_id=self._claim.job.job_id):
+            self._guard()
+
+    def _guard(self) -> None:
         job = self._claim.job
         interval = self._settings.heartbeat_seconds
         while not self._done.wait(max(0.05, min(interval, self._deadline - time.time()))):
@@ -171,6 +176,10 @@ class WorkerLoop:
         return 2.0 * self.settings.lease_seconds
 
     def execute(self, claim: Claim) -> None:
+        with log_context(job_id=claim.job.job_id):
+            self._execute(claim)
+
+    def _execute(self, claim: Claim) -> None:
         job = claim.job
         log.info("worker %s runs job %s (attempt %d)", self.worker_id, job.job_id, job.attempts)
         deadline = time.time() + job.time_limit_s
@@ -240,12 +249,14 @@ def _beat_forever(liveness: Any) -> None:
 
 
 def worker_main(
-    settings_data: dict[str, Any], parent_pid: int | None = None, liveness: Any = None
+    settings_data: dict[str, Any],
+    parent_pid: int | None = None,
+    liveness: Any = None,
+    log_level: int = logging.INFO,
 ) -> None:
-    """Entry point of a pool process (spawned): build resources, then loop."""
-    logging.basicConfig(
-        level=logging.INFO, format="%(asctime)s %(process)d %(name)s %(levelname)s %(message)s"
-    )
+    """Entry point of a pool process (spawned): build resources, then loop.  It logs
+    at its supervisor's ``log_level``, in ``DEXLAB_LOG_FORMAT`` (inherited)."""
+    configure_logging(level=log_level)
     if liveness is not None:
         threading.Thread(
             target=_beat_forever, args=(liveness,), name="liveness", daemon=True

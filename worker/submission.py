@@ -64,11 +64,14 @@ def submit(
     raw_inputs: Mapping[str, Any],
     idempotency_key: str | None = None,
     dispatcher: Dispatcher | None = None,
+    owner: str = "",
 ) -> tuple[JobRecord, bool]:
-    """Validate, check the cost limit, commit a job, then dispatch it; ``(job, created)``.
+    """Validate, check the cost limit, commit a job owned by ``owner`` (an API key's
+    name; '' = anonymous), then dispatch it; ``(job, created)``.
 
     The job is committed before it is dispatched, so a broker outage loses nothing (the
-    sweeper sends it later); a replayed idempotent request is not dispatched again.
+    sweeper sends it later); a replayed idempotent request is not dispatched again.  An
+    idempotency key is the owner's own: another owner's same key makes another job.
     """
     definition = registry.get(process_id)
     if definition is None:
@@ -92,6 +95,7 @@ def submit(
         max_attempts=settings.max_attempts,
         idempotency_key=idempotency_key,
         request_hash=request_hash(process_id, stored_inputs) if idempotency_key else None,
+        owner=owner,
     )
     job, created = store.create_job(new)
     if created and dispatcher is not None:

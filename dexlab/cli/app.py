@@ -13,7 +13,7 @@ from importlib.metadata import PackageNotFoundError, version
 
 import click
 
-from dexlab.cli import server
+from dexlab.cli import jobs, keys, processes, server
 
 __all__ = ["cli", "main"]
 
@@ -35,6 +35,9 @@ def cli() -> None:
 
 
 server.register(cli)
+processes.register(cli)
+jobs.register(cli)
+keys.register(cli)
 
 
 def main(argv: Sequence[str] | None = None) -> None:

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import sys
 from collections.abc import Callable
 from pathlib import Path
 from typing import Any, TypeVar
@@ -45,6 +46,19 @@ def _store_options(command: F) -> F:
     return command
 
 
+def _settings_problem(command: str, exc: Exception) -> SystemExit:
+    """A setting the service refused, as one line per setting (never its value: it may
+    be a secret); exit status 2."""
+    lines = []
+    for error in getattr(exc, "errors", lambda: [])():
+        field = ".".join(str(part) for part in error.get("loc", ())) or "settings"
+        lines.append(
+            f"dexlab {command}: invalid setting DEXLAB_{field.upper()}: {error.get('msg', '')}"
+        )
+    sys.stderr.write("\n".join(lines or [f"dexlab {command}: invalid settings: {exc}"]) + "\n")
+    return SystemExit(2)
+
+
 def _given(**options: Any) -> dict[str, Any]:
     return {name: value for name, value in options.items() if value is not None}
 
@@ -55,18 +69,28 @@ def _given(**options: Any) -> dict[str, Any]:
 @_store_options
 def serve(**options: Any) -> None:
     """Run the HTTP API with a local worker pool (or the API alone with a broker)."""
+    from pydantic import ValidationError
+
     from service.cli import serve as run_server
 
-    run_server(_given(**options))
+    try:
+        run_server(_given(**options))
+    except ValidationError as exc:
+        raise _settings_problem("serve", exc) from None
 
 
 @click.command()
 @_store_options
 def worker(log_level: str | None, **options: Any) -> None:
     """Run worker processes alone against a store (a Celery worker with a broker)."""
+    from pydantic import ValidationError
+
     from service.cli import run_worker
 
-    code = run_worker(_given(**options), log_level or "info")
+    try:
+        code = run_worker(_given(**options), log_level or "info")
+    except ValidationError as exc:
+        raise _settings_problem("worker", exc) from None
     if code:
         raise SystemExit(code)
 

@@ -70,9 +70,10 @@ def submit_execute(
     idempotency_key: str | None,
     wants_sync: bool,
     base_url: str,
+    owner: str = "",
 ) -> Submitted:
-    """Check the request, commit the job, keep its options (blocking: threadpool);
-    ``base_url`` is where callbacks' links point.
+    """Check the request, commit the job (owned by ``owner``), keep its options
+    (blocking: threadpool); ``base_url`` is where callbacks' links point.
 
     A synchronous answer is possible when the process allows it for these inputs and
     a worker is up to run the job (else the wait could only time out)."""
@@ -84,8 +85,9 @@ def submit_execute(
         body.inputs, lambda href: policy.fetch_json(href, settings.max_body_bytes)
     )
     job, created, sync = submit_job(
-        store, registry, settings, process_id, inputs, idempotency_key, dispatcher, wants_sync
-    )
+        store, registry, settings, process_id, inputs, idempotency_key, dispatcher, wants_sync,
+        owner,
+    )  # fmt: skip
     if created:
         options = {**presentation.to_json(), "base": base_url}
         store.set_request_options(job.job_id, options, subscriber)
@@ -94,10 +96,13 @@ def submit_execute(
     return Submitted(job, created, sync, presentation)
 
 
-def finished_job(store: JobStore, job_id: str) -> tuple[JobRecord, Mapping[str, Any]]:
-    """A successful job and its result; otherwise the exception that says why there
-    are none (failed: the failure; dismissed: no such job any more; else not ready)."""
-    job = store.get_job(job_id)
+def finished_job(
+    store: JobStore, job_id: str, owner: str | None = None
+) -> tuple[JobRecord, Mapping[str, Any]]:
+    """A successful job (of ``owner``; None: anyone's) and its result; otherwise the
+    exception that says why there are none (failed: the failure; dismissed or
+    another owner's: no such job; else not ready)."""
+    job = store.get_job(job_id, owner=owner)
     if job is None:
         raise NoSuchJob(f"No job {job_id!r}.")
     if job.status is JobStatus.FAILED:
@@ -120,10 +125,11 @@ def job_results(
     urls: PublicUrls,
     presentation: Presentation | None = None,
     headers: Mapping[str, str] | None = None,
+    owner: str | None = None,
 ) -> Response:
-    """A finished job's results, presented as ``presentation`` says (default: as the
-    request that created the job asked)."""
-    job, result = finished_job(store, job_id)
+    """A finished job's results (of ``owner``; None: anyone's), presented as
+    ``presentation`` says (default: as the request that created the job asked)."""
+    job, result = finished_job(store, job_id, owner)
     if presentation is None:
         presentation = Presentation.from_json(store.request_options(job_id)[0])
     definition = registry.get(job.process_id)

@@ -1,4 +1,8 @@
-"""``/ogc/jobs``: the job list, a job's status, its results, dismissal."""
+"""``/ogc/jobs``: the job list, a job's status, its results, dismissal.
+
+A caller sees its own jobs (an admin key every owner's, ``owner`` selecting one);
+another owner's job is ``no-such-job``.
+"""
 
 from __future__ import annotations
 
@@ -9,6 +13,7 @@ from fastapi.responses import JSONResponse
 from pydantic import AfterValidator, StringConstraints
 from starlette.responses import Response, StreamingResponse
 
+from service.auth import IdentityDep
 from service.deps import RegistryDep, StoreDep
 from service.documents import artifact_headers
 from service.ogc import pages as ogc_pages
@@ -66,6 +71,7 @@ def list_jobs(
     store: StoreDep,
     registry: RegistryDep,
     pages: PagesDep,
+    identity: IdentityDep,
     processID: Annotated[
         ProcessIDs | None, Query(description="Only these processes' jobs.")
     ] = None,
@@ -91,8 +97,13 @@ def list_jobs(
         Query(max_length=200, description="Where a `next` link continues."),
         AfterValidator(_cursor),
     ] = None,
+    owner: Annotated[
+        str | None,
+        Query(max_length=64, description="Admin keys only: this key's jobs ('' = anonymous)."),
+    ] = None,
     f: FormatQuery = None,
 ) -> Response:
+    scope = identity.owner_filter(owner)
     unknown = sorted(set(processID or ()) - set(registry.ids()))
     if unknown:
         raise NoSuchProcess(f"No process {unknown[0]!r}; available: {', '.join(registry.ids())}.")
@@ -104,7 +115,7 @@ def list_jobs(
         minDuration,
         maxDuration,
     )
-    page = store.list_jobs(limit=min(limit, MAX_PAGE), cursor=cursor, where=where)
+    page = store.list_jobs(limit=min(limit, MAX_PAGE), cursor=cursor, where=where, owner=scope)
     urls = public_urls(request)
     params = [(k, v) for k, v in request.query_params.multi_items() if k != "f"]
     self_href = f"{urls.ogc}/jobs" + (f"?{page_query(params, cursor)}" if params else "")
@@ -131,9 +142,10 @@ def get_job(
     store: StoreDep,
     registry: RegistryDep,
     pages: PagesDep,
+    identity: IdentityDep,
     f: FormatQuery = None,
 ) -> Response:
-    job = store.get_job(jobID)
+    job = store.get_job(jobID, owner=identity.owner_scope)
     if job is None:
         raise NoSuchJob(f"No job {jobID!r}.")
     urls = public_urls(request)
@@ -151,8 +163,10 @@ def get_job(
     responses=_STATUS,
     response_model=None,
 )
-def dismiss_job(jobID: str, request: Request, store: StoreDep) -> JSONResponse:
-    job = store.dismiss(jobID)
+def dismiss_job(
+    jobID: str, request: Request, store: StoreDep, identity: IdentityDep
+) -> JSONResponse:
+    job = store.dismiss(jobID, owner=identity.owner_scope)
     if job is None:
         raise NoSuchJob(f"No job {jobID!r}.")
     return JSONResponse(status_info(job, public_urls(request)))
@@ -181,13 +195,15 @@ def get_results(
     store: StoreDep,
     registry: RegistryDep,
     pages: PagesDep,
+    identity: IdentityDep,
     f: FormatQuery = None,
 ) -> Response:
     urls = public_urls(request)
+    owner = identity.owner_scope
     if not wants_html(request):
-        return job_results(store, registry, jobID, urls, headers=ogc_pages.NEGOTIATED)
+        return job_results(store, registry, jobID, urls, headers=ogc_pages.NEGOTIATED, owner=owner)
     # A page: the job's, with the outputs its request selected (or why there are none).
-    job, result = finished_job(store, jobID)
+    job, result = finished_job(store, jobID, owner)
     presentation = Presentation.from_json(store.request_options(jobID)[0])
     definition = registry.get(job.process_id)
     outputs = process_outputs(definition) if definition is not None else {}
@@ -219,9 +235,10 @@ def get_output(
     store: StoreDep,
     registry: RegistryDep,
     pages: PagesDep,
+    identity: IdentityDep,
     f: FormatQuery = None,
 ) -> Response:
-    job, result = finished_job(store, jobID)
+    job, result = finished_job(store, jobID, identity.owner_scope)
     definition = registry.get(job.process_id)
     spec = process_outputs(definition).get(outputID) if definition is not None else None
     page = wants_html(request)

@@ -9,6 +9,7 @@ from fastapi.responses import JSONResponse
 from starlette.concurrency import run_in_threadpool
 from starlette.responses import Response
 
+from service.auth import IdentityDep
 from service.deps import DispatcherDep, RegistryDep, SettingsDep, StoreDep
 from service.execution import wait_while_connected
 from service.job_watcher import JobWatcher
@@ -219,6 +220,7 @@ async def execute(
     registry: RegistryDep,
     settings: SettingsDep,
     dispatcher: DispatcherDep,
+    identity: IdentityDep,
     idempotency_key: Annotated[
         str | None, Header(alias="Idempotency-Key", min_length=1, max_length=255)
     ] = None,
@@ -241,6 +243,7 @@ async def execute(
         idempotency_key,
         not preferences.respond_async,
         urls.root,
+        identity.name,
     )
     mode = execution_mode(preferences, submitted.can_run_sync)
     job_id = submitted.job.job_id

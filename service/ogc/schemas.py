@@ -157,7 +157,7 @@ OGC_ROUTE_PROBLEMS: dict[tuple[str, str], tuple[int, ...]] = {
     ("get", "/ogc/processes"): (400,),
     ("get", "/ogc/processes/{processID}"): (400, 404),
     ("post", "/ogc/processes/{processID}/execution"): (400, 404, 413, 422, 503, 507),
-    ("get", "/ogc/jobs"): (400, 404, 503),
+    ("get", "/ogc/jobs"): (400, 403, 404, 503),
     ("get", "/ogc/jobs/{jobID}"): (400, 404, 503),
     ("delete", "/ogc/jobs/{jobID}"): (404, 503),
     ("get", "/ogc/jobs/{jobID}/results"): (400, 404, 503, 507),

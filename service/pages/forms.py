@@ -5,9 +5,11 @@ another site must not work: the request must come from this service's own pages 
 ``Sec-Fetch-Site: same-origin`` where the browser sends it, else an ``Origin`` header
 naming this host.  Anything else is 403.
 
-Both halves live here so a later CSRF token (with login sessions) is added in one
-place: :func:`form_protection` writes what every form carries (rendered into each
-form by the templates), :func:`check_form_origin` checks it.
+With API keys, a browser is signed in by a session cookie, and every form also carries
+that session's CSRF token (:mod:`service.auth.sessions`): :func:`form_protection`
+writes it into each form (the templates render it), :func:`check_csrf` refuses a form
+without it (403).  A request signed with a Bearer key, or an open service, has no
+cookie a forged form could ride on, and needs none.
 """
 
 from __future__ import annotations
@@ -15,9 +17,13 @@ from __future__ import annotations
 from urllib.parse import parse_qsl, urlsplit
 
 from fastapi import Request
+from markupsafe import escape
 from starlette.exceptions import HTTPException
 
-__all__ = ["FORM_MEDIA_TYPE", "check_form_origin", "form_protection", "read_form"]
+from service.auth.identity import Identity
+from service.auth.sessions import CSRF_FIELD, SessionSigner
+
+__all__ = ["FORM_MEDIA_TYPE", "check_csrf", "check_form_origin", "form_protection", "read_form"]
 
 FORM_MEDIA_TYPE = "application/x-www-form-urlencoded"
 
@@ -25,10 +31,44 @@ FORM_MEDIA_TYPE = "application/x-www-form-urlencoded"
 _MAX_FIELDS = 20
 
 
+def _session(request: Request) -> tuple[str, SessionSigner | None] | None:
+    """``(session token, signer)`` when the request came with a browser session."""
+    identity = getattr(request.state, "identity", None)
+    if not isinstance(identity, Identity) or identity.session is None:
+        return None
+    auth = getattr(request.app.state, "auth", None)
+    return identity.session, getattr(auth, "signer", None)
+
+
 def form_protection(request: Request) -> str:
-    """The hidden fields every form carries (HTML).  Today none: the origin check
-    needs nothing from the form; a CSRF token will be written here."""
-    return ""
+    """The hidden fields every form carries (HTML): the session's CSRF token, when
+    the page was drawn for a browser session (none otherwise)."""
+    session = _session(request)
+    if session is None:
+        return ""
+    token, signer = session
+    if signer is None:
+        return ""
+    return f'<input type="hidden" name="{CSRF_FIELD}" value="{escape(signer.csrf_token(token))}">'
+
+
+def check_csrf(request: Request, form: dict[str, str]) -> None:
+    """Raise 403 unless ``form`` carries the CSRF token of the request's session
+    (nothing to check without a session)."""
+    session = _session(request)
+    if session is None:
+        return
+    token, signer = session
+    given = form.get(CSRF_FIELD, "")
+    if not given or signer is None:
+        raise _forbidden(
+            "This form has no CSRF token: post it from a page of this service (reload the "
+            "page if it was drawn before you logged in)."
+        )
+    if not signer.csrf_matches(token, given):
+        raise _forbidden(
+            "This form's CSRF token is not your session's: reload the page and post it again."
+        )
 
 
 def _forbidden(detail: str) -> HTTPException:

@@ -149,6 +149,8 @@ class Pages:
                 **context,
                 "request_path": request.url.path,
                 "form_protection": Markup(form_protection(request)),
+                # Who is signed in (the header shows it; None: no gate ran).
+                "identity": getattr(request.state, "identity", None),
             }
         )
         response = HTMLResponse(html, status_code=status_code, headers=dict(headers or {}))

@@ -135,12 +135,15 @@ def job_list_page(
     limit: int,
     status: JobStatus | None,
     process_id: str | None,
+    owner: str | None = None,
 ) -> HTMLResponse:
     filters: dict[str, str] = {"limit": str(limit)}
     if status is not None:
         filters["status"] = status.value
     if process_id:
         filters["processID"] = process_id
+    if owner is not None:  # an admin's listing of one key's jobs
+        filters["owner"] = owner
     next_href = (
         f"/v1/jobs?{urlencode({**filters, 'cursor': page.next_cursor})}" if page.next_cursor else ""
     )

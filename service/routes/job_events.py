@@ -15,12 +15,14 @@ import json
 import logging
 import time
 from collections.abc import AsyncIterator
+from functools import partial
 
 import anyio
 from fastapi import APIRouter
 from fastapi.responses import StreamingResponse
 from starlette.concurrency import run_in_threadpool
 
+from service.auth import IdentityDep
 from service.deps import StoreDep
 from service.pages import PagesDep
 from worker.contract import TERMINAL_STATUSES, JobRecord
@@ -95,9 +97,12 @@ async def _events(
         }
     },
 )
-async def job_events(job_id: str, store: StoreDep, pages: PagesDep) -> StreamingResponse:
-    """``progress`` events until the job ends (see the module docstring)."""
-    job = await run_in_threadpool(store.get_job, job_id)
+async def job_events(
+    job_id: str, store: StoreDep, pages: PagesDep, identity: IdentityDep
+) -> StreamingResponse:
+    """``progress`` events until the job ends (see the module docstring); a browser's
+    EventSource sends its session cookie."""
+    job = await run_in_threadpool(partial(store.get_job, job_id, owner=identity.owner_scope))
     if job is None:
         raise NoSuchJob(f"No job {job_id!r}.")
     settings = pages.settings

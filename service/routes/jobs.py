@@ -1,12 +1,18 @@
-"""``/v1/jobs``: status, listing, results, artifacts and dismissal."""
+"""``/v1/jobs``: status, listing, results, artifacts and dismissal.
+
+Each caller sees its own jobs (an admin key every owner's): another owner's job is
+404 ``no-such-job`` on every route, as if it did not exist.
+"""
 
 from __future__ import annotations
 
 from typing import Annotated, Any
+from urllib.parse import urlencode
 
 from fastapi import APIRouter, Header, Query, Request, Response
 from fastapi.responses import HTMLResponse, StreamingResponse
 
+from service.auth import Identity, IdentityDep
 from service.deps import RegistryDep, StoreDep
 from service.documents import artifact_headers, results_document, status_document
 from service.pages import FormatQuery, Pages, PagesDep, views, wants_html
@@ -28,8 +34,9 @@ __all__ = ["router"]
 router = APIRouter(prefix="/v1/jobs", tags=["jobs"])
 
 
-def _job(store: JobStore, job_id: str) -> JobRecord:
-    job = store.get_job(job_id)
+def _job(store: JobStore, job_id: str, owner: str | None = None) -> JobRecord:
+    """The job, if it exists and ``owner`` (None: anyone) owns it; else no-such-job."""
+    job = store.get_job(job_id, owner=owner)
     if job is None:
         raise NoSuchJob(f"No job {job_id!r}.")
     return job
@@ -42,14 +49,22 @@ def list_jobs(
     store: StoreDep,
     registry: RegistryDep,
     pages: PagesDep,
+    identity: IdentityDep,
     limit: Annotated[int, Query(ge=1, le=1000)] = 20,
     cursor: Annotated[str | None, Query(max_length=200)] = None,
     status: Annotated[JobStatus | None, Query()] = None,
     process_id: Annotated[str | None, Query(alias="processID", max_length=200)] = None,
+    owner: Annotated[
+        str | None,
+        Query(max_length=64, description="Admin keys only: this key's jobs ('' = anonymous)."),
+    ] = None,
     f: FormatQuery = None,
 ) -> dict[str, Any] | HTMLResponse:
+    scope = identity.owner_filter(owner)
     try:
-        page = store.list_jobs(limit=limit, cursor=cursor, status=status, process_id=process_id)
+        page = store.list_jobs(
+            limit=limit, cursor=cursor, status=status, process_id=process_id, owner=scope
+        )
     except ValueError as exc:
         raise InvalidInputs(
             [{"field": "cursor", "message": str(exc), "type": "value_error"}],
@@ -57,8 +72,9 @@ def list_jobs(
     response.headers["Vary"] = "Accept"
     if wants_html(request):
         return views.job_list_page(
-            request, pages, registry, page, limit=limit, status=status, process_id=process_id
-        )
+            request, pages, registry, page, limit=limit, status=status, process_id=process_id,
+            owner=owner,
+        )  # fmt: skip
     links = [{"href": "/v1/jobs", "rel": "self", "type": "application/json"}]
     if page.next_cursor:
         query = f"limit={limit}&cursor={page.next_cursor}"
@@ -66,9 +82,11 @@ def list_jobs(
             query += f"&status={status.value}"
         if process_id is not None:
             query += f"&processID={process_id}"
+        if owner is not None:
+            query += f"&{urlencode({'owner': owner})}"
         links.append({"href": f"/v1/jobs?{query}", "rel": "next", "type": "application/json"})
     return {
-        "jobs": [status_document(j) for j in page.jobs],
+        "jobs": [_status(j, identity) for j in page.jobs],
         "next_cursor": page.next_cursor,
         "links": links,
     }
@@ -82,13 +100,19 @@ def get_job(
     store: StoreDep,
     registry: RegistryDep,
     pages: PagesDep,
+    identity: IdentityDep,
     f: FormatQuery = None,
 ) -> dict[str, Any] | HTMLResponse:
-    job = _job(store, job_id)
+    job = _job(store, job_id, identity.owner_scope)
     response.headers["Vary"] = "Accept"
     if wants_html(request):
         return _job_page(request, store, registry, pages, job)
-    return status_document(job)
+    return _status(job, identity)
+
+
+def _status(job: JobRecord, identity: Identity) -> dict[str, Any]:
+    """The status document as this caller may see it (``worker_id``, ``owner``)."""
+    return status_document(job, worker=identity.sees_workers, owner=identity.sees_owners)
 
 
 def _job_page(
@@ -99,16 +123,16 @@ def _job_page(
 
 
 @router.delete("/{job_id}", summary="Dismiss a job (stops a running attempt's process)")
-def dismiss_job(job_id: str, store: StoreDep) -> dict[str, Any]:
-    job = store.dismiss(job_id)
+def dismiss_job(job_id: str, store: StoreDep, identity: IdentityDep) -> dict[str, Any]:
+    job = store.dismiss(job_id, owner=identity.owner_scope)
     if job is None:
         raise NoSuchJob(f"No job {job_id!r}.")
-    return status_document(job)
+    return _status(job, identity)
 
 
-def _finished(store: JobStore, job_id: str) -> JobRecord:
+def _finished(store: JobStore, job_id: str, owner: str | None = None) -> JobRecord:
     """The job if it succeeded; otherwise the problem that says why it has no results."""
-    job = _job(store, job_id)
+    job = _job(store, job_id, owner)
     if job.status is JobStatus.FAILED:
         raise JobFailed(jobID=job.job_id, error=dict(job.error or {}))
     if job.status is JobStatus.DISMISSED:
@@ -141,9 +165,10 @@ def get_results(
     store: StoreDep,
     registry: RegistryDep,
     pages: PagesDep,
+    identity: IdentityDep,
     f: FormatQuery = None,
 ) -> dict[str, Any] | HTMLResponse:
-    job = _job(store, job_id)
+    job = _job(store, job_id, identity.owner_scope)
     response.headers["Vary"] = "Accept"
     if wants_html(request):  # the job's page shows its results (or why there are none)
         return _job_page(request, store, registry, pages, job)
@@ -155,9 +180,10 @@ def get_artifact(
     job_id: str,
     name: str,
     store: StoreDep,
+    identity: IdentityDep,
     if_none_match: Annotated[str | None, Header(max_length=1000)] = None,
 ) -> Response:
-    job = _finished(store, job_id)
+    job = _finished(store, job_id, identity.owner_scope)
     stored = store.artifact(job_id, name)
     if stored is None:
         names = ", ".join(a.name for a in job.artifacts)

@@ -7,9 +7,11 @@
 - ``POST /pages/jobs/{jobID}/dismiss``: cancel a queued or running job, or delete a
   finished one's results, then back to the job's page (303).
 
-Both refuse a form posted from another site (403, :mod:`service.pages.forms`).  They
-are page actions, not API operations: the API has ``POST .../execution`` and
-``DELETE /v1/jobs/{jobID}``; these are left out of the OpenAPI document.
+Both refuse a form posted from another site, or (signed in with a session cookie)
+without the session's CSRF token (403, :mod:`service.pages.forms`); a job is the
+caller's (another owner's job is 404).  They are page actions, not API operations:
+the API has ``POST .../execution`` and ``DELETE /v1/jobs/{jobID}``; these are left
+out of the OpenAPI document.
 """
 
 from __future__ import annotations
@@ -22,10 +24,11 @@ from fastapi import APIRouter, Request
 from fastapi.responses import HTMLResponse, RedirectResponse
 from starlette.concurrency import run_in_threadpool
 
+from service.auth import IdentityDep
 from service.deps import DispatcherDep, RegistryDep, SettingsDep, StoreDep
 from service.documents import job_href
 from service.pages import PagesDep, views
-from service.pages.forms import check_form_origin, read_form
+from service.pages.forms import check_csrf, check_form_origin, read_form
 from service.problems import PROBLEM_TYPES, problem_type_uri
 from service.request_guard import json_depth
 from worker.errors import CostLimitExceeded, InvalidInputs, NoSuchJob, NoSuchProcess
@@ -87,20 +90,23 @@ async def run_process(
     settings: SettingsDep,
     dispatcher: DispatcherDep,
     pages: PagesDep,
+    identity: IdentityDep,
 ) -> RedirectResponse | HTMLResponse:
     check_form_origin(request)
     definition = registry.get(process_id)
     if definition is None:
         raise NoSuchProcess(f"No process {process_id!r}; available: {', '.join(registry.ids())}.")
     form = await read_form(request)
+    check_csrf(request, form)
     text = form.get("inputs", "")
     examples = views.example_forms(definition)
     index = _example_index(form.get("example", ""), len(examples))
     try:
         inputs = _parse_inputs(text, settings.max_json_depth)
         job, _ = await run_in_threadpool(
-            submit, store, registry, settings, process_id, inputs, None, dispatcher
-        )
+            submit, store, registry, settings, process_id, inputs, None, dispatcher,
+            identity.name,
+        )  # fmt: skip
     except _BadText as exc:
         problem = _problem("malformed-request", f"The inputs are not valid JSON: {exc}.")
     except InvalidInputs as exc:
@@ -120,10 +126,12 @@ async def run_process(
 
 
 @router.post("/jobs/{job_id}/dismiss", response_model=None)
-async def dismiss_job(job_id: str, request: Request, store: StoreDep) -> RedirectResponse:
+async def dismiss_job(
+    job_id: str, request: Request, store: StoreDep, identity: IdentityDep
+) -> RedirectResponse:
     check_form_origin(request)
-    await read_form(request)
-    job = await run_in_threadpool(store.dismiss, job_id)
+    check_csrf(request, await read_form(request))
+    job = await run_in_threadpool(partial(store.dismiss, job_id, owner=identity.owner_scope))
     if job is None:
         raise NoSuchJob(f"No job {job_id!r}.")
     return RedirectResponse(job_href(job_id), status_code=303)

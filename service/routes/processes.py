@@ -9,6 +9,7 @@ from fastapi.responses import HTMLResponse, JSONResponse
 from pydantic import BaseModel, ConfigDict, Field
 from starlette.concurrency import run_in_threadpool
 
+from service.auth import Identity, get_identity
 from service.deps import DispatcherDep, RegistryDep, SettingsDep, StoreDep
 from service.documents import job_href, status_document
 from service.execution import submit_job, wait_while_connected
@@ -16,6 +17,7 @@ from service.job_watcher import JobWatcher
 from service.pages import FormatQuery, PagesDep, views, wants_html
 from service.preferences import requested_wait
 from service.routes.jobs import finished_document
+from worker.contract import JobRecord
 from worker.errors import NoSuchJob, NoSuchProcess
 from worker.store.base import JobStore
 
@@ -123,6 +125,7 @@ async def execute(
     The wait holds no thread: the app's job watcher wakes the request when the job is
     done."""
     wait = requested_wait(prefer)
+    identity = get_identity(request)
     job, created, synchronous = await run_in_threadpool(
         submit_job,
         store,
@@ -133,6 +136,7 @@ async def execute(
         idempotency_key,
         dispatcher,
         wait is not None,
+        identity.name,
     )
     response.headers["Location"] = job_href(job.job_id)
     if not created:
@@ -146,7 +150,11 @@ async def execute(
                 "Preference-Applied": f"wait={wait:g}",
             }
             return JSONResponse(document, status_code=200, headers=headers)
-    return status_document(job)
+    return _status(job, identity)
+
+
+def _status(job: JobRecord, identity: Identity) -> dict[str, Any]:
+    return status_document(job, worker=identity.sees_workers, owner=identity.sees_owners)
 
 
 def _finished_document(store: JobStore, job_id: str) -> dict[str, Any]:

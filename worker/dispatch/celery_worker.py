@@ -4,6 +4,10 @@ A delivery claims its job in the store.  If another attempt holds a live lease (
 process may have just died), the task is retried once the lease can have expired; if
 the job is finished or dismissed, the delivery is dropped.  Each pool process builds
 its own store connection the first time it runs a task (after the fork).
+
+Logging stays as ``dexlab worker`` configured it (:mod:`worker.logs`): Celery is told
+that logging is set up, so its lines, its task lines (which carry the task ID, the job
+ID) and the prefork children's lines all share the one format.
 """
 
 from __future__ import annotations
@@ -14,11 +18,12 @@ import socket
 from dataclasses import dataclass
 from typing import Any
 
-from celery import Celery
+from celery import Celery, signals
 
 from worker.contract import JobStatus
 from worker.dispatch.celery_app import create_celery_app
 from worker.dispatch.celery_dispatch import CeleryDispatch, Sweeper
+from worker.logs import log_context, stdout_as_log_lines
 from worker.processes import default_registry
 from worker.runner import WorkerLoop, worker_id_for
 from worker.settings import WorkerSettings
@@ -47,6 +52,11 @@ def _loop_for_this_process(app: Celery) -> WorkerLoop:
 
 def run_delivered_job(app: Celery, job_id: str) -> float | None:
     """Run the delivered job if it can be claimed; seconds to retry after, or None."""
+    with log_context(job_id=job_id):
+        return _run_delivered_job(app, job_id)
+
+
+def _run_delivered_job(app: Celery, job_id: str) -> float | None:
     loop = _loop_for_this_process(app)
     attempt = loop.store.claim_job(job_id, loop.worker_id, loop.settings.lease_seconds)
     if attempt.claim is not None:
@@ -65,9 +75,21 @@ def run_delivered_job(app: Celery, job_id: str) -> float | None:
     return None
 
 
-def run_celery_worker(settings: WorkerSettings, log_level: str = "INFO") -> None:
+def _logging_is_set_up(**_: Any) -> None:
+    """Celery's ``setup_logging`` signal: with a receiver, Celery leaves logging alone."""
+
+
+def run_celery_worker(
+    settings: WorkerSettings, log_level: str = "INFO", json_lines: bool = False
+) -> None:
     """``dexlab worker`` with a broker: a Celery worker with ``settings.workers``
-    prefork processes, plus a sweeper thread in the main process."""
+    prefork processes, plus a sweeper thread in the main process.  Logging must be
+    configured already; with ``json_lines`` Celery's start-up banner is dropped and
+    what it prints (its shutdown notices) becomes log lines, so that every line of
+    the output is JSON."""
+    signals.setup_logging.connect(_logging_is_set_up, weak=False, dispatch_uid="dexlab")
+    if json_lines:
+        stdout_as_log_lines("celery.stdout")
     store = open_store(settings.resolved_store_url(), retry_s=settings.store_retry_seconds)
     app = create_celery_app(settings)
     dispatcher = CeleryDispatch(settings, store)
@@ -76,6 +98,7 @@ def run_celery_worker(settings: WorkerSettings, log_level: str = "INFO") -> None
     sweeper = Sweeper(settings, store, dispatcher, worker_id=worker_id)
     sweeper.start()
     argv: list[Any] = [
+        *(["--quiet"] if json_lines else []),
         "worker",
         f"--concurrency={settings.workers}",
         "--pool=prefork",

@@ -48,6 +48,7 @@ class ArtifactIndex:
         def _exec(self, conn: Conn, query: str, params: Sequence[Any] = ()) -> Any: ...
         def _one(self, conn: Conn, query: str, params: Sequence[Any] = ()) -> Any: ...
         def _all(self, conn: Conn, query: str, params: Sequence[Any] = ()) -> list[Any]: ...
+        def _tally_finish(self, conn: Conn, row: Any, status: JobStatus, now: float) -> None: ...
 
     # -- where the bytes live (dialect hooks) -------------------------------------------
     def _put_artifact_data(
@@ -120,7 +121,8 @@ class ArtifactIndex:
         with self._write() as conn:
             row = self._one(
                 conn,
-                f"SELECT status FROM jobs WHERE job_id = ? AND lease_token = ?{self.lock_clause}",
+                "SELECT status, process_id, started FROM jobs WHERE job_id = ? AND "
+                f"lease_token = ?{self.lock_clause}",
                 (job_id, lease_token),
             )
             owner = row is not None and row["status"] in (_RUNNING, _SUCCESSFUL)
@@ -152,6 +154,7 @@ class ArtifactIndex:
                     "updated = ?, message = 'finished', lease_expires = NULL WHERE job_id = ?",
                     (payload, _SUCCESSFUL, now, now, job_id),
                 )
+                self._tally_finish(conn, row, JobStatus.SUCCESSFUL, now)
         if not owner:
             self._discard_attempt(job_id, attempt)
             return False

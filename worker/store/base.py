@@ -7,7 +7,7 @@ running, so a stale or duplicate worker can never overwrite a newer attempt.
 
 from __future__ import annotations
 
-from collections.abc import Iterator, Mapping, Sequence
+from collections.abc import Callable, Iterator, Mapping, Sequence
 from dataclasses import dataclass
 from datetime import datetime
 from typing import Any, Protocol
@@ -15,6 +15,7 @@ from typing import Any, Protocol
 from worker.contract import Artifact, ArtifactInfo, JobRecord, JobStatus
 
 __all__ = [
+    "ApiKey",
     "CallbackClaim",
     "Claim",
     "ClaimAttempt",
@@ -22,6 +23,7 @@ __all__ = [
     "JobFilter",
     "JobPage",
     "JobStore",
+    "JobTally",
     "NewJob",
     "StoredArtifact",
     "WorkerInfo",
@@ -38,6 +40,8 @@ class NewJob:
     max_attempts: int
     idempotency_key: str | None = None
     request_hash: str | None = None
+    #: The API key name submitting it ('' = anonymous); idempotency keys are per owner.
+    owner: str = ""
 
 
 @dataclass(frozen=True)
@@ -118,6 +122,34 @@ class StoredArtifact:
 
 
 @dataclass(frozen=True)
+class ApiKey:
+    """An API key as the store keeps it: the SHA-256 of its secret, never the secret.
+
+    ``key_id`` is replaced with the secret (a browser session names it, so replacing
+    or revoking a key ends its sessions); times are epoch seconds."""
+
+    name: str
+    key_id: str
+    secret_hash: str
+    admin: bool
+    created: float
+    revoked: float | None
+    last_used: float | None
+
+
+@dataclass(frozen=True)
+class JobTally:
+    """One running count of :mod:`worker.store.tallies`: ``count`` events (and, for a
+    histogram bucket, the sum ``total`` of their seconds) of ``tally`` and ``label``."""
+
+    process_id: str
+    tally: str
+    label: str
+    count: int
+    total: float
+
+
+@dataclass(frozen=True)
 class WorkerInfo:
     """A worker process that registered with the store."""
 
@@ -138,11 +170,13 @@ class JobStore(Protocol):
         """Raise :class:`worker.errors.StoreUnavailable` unless the store answers."""
 
     def create_job(self, new: NewJob) -> tuple[JobRecord, bool]:
-        """Commit a new job; ``(job, created)``.  A known idempotency key with the same
-        request hash returns the existing job with ``created=False``; with another hash
-        it raises :class:`worker.errors.IdempotencyConflict`."""
+        """Commit a new job; ``(job, created)``.  A known idempotency key (of the same
+        owner) with the same request hash returns the existing job with
+        ``created=False``; with another hash it raises
+        :class:`worker.errors.IdempotencyConflict`."""
 
-    def get_job(self, job_id: str) -> JobRecord | None: ...
+    def get_job(self, job_id: str, *, owner: str | None = None) -> JobRecord | None:
+        """The job; None if unknown, or when ``owner`` is given and owns it not."""
 
     def statuses(self, job_ids: Sequence[str]) -> dict[str, JobStatus]:
         """The status of each known job among ``job_ids``, in one query."""
@@ -155,9 +189,10 @@ class JobStore(Protocol):
         status: JobStatus | None = None,
         process_id: str | None = None,
         where: JobFilter | None = None,
+        owner: str | None = None,
     ) -> JobPage:
         """Jobs, newest first, ``limit`` at a time (``next_cursor`` continues); ``status``,
-        ``process_id`` and ``where`` narrow the selection."""
+        ``process_id``, ``where`` and ``owner`` (one owner's jobs) narrow the selection."""
 
     def set_request_options(
         self, job_id: str, presentation: Mapping[str, Any], subscriber: Mapping[str, Any] | None
@@ -227,8 +262,9 @@ class JobStore(Protocol):
     def expire_leases_of(self, worker_id: str) -> int:
         """Expire the leases a (dead) worker holds so the jobs are retried at once."""
 
-    def dismiss(self, job_id: str) -> JobRecord | None:
-        """Dismiss a job (a finished job's results are deleted); None if unknown."""
+    def dismiss(self, job_id: str, *, owner: str | None = None) -> JobRecord | None:
+        """Dismiss a job (a finished job's results are deleted); None if unknown, or
+        when ``owner`` is given and owns it not (then nothing changes)."""
 
     def get_result(self, job_id: str) -> Mapping[str, Any] | None: ...
 
@@ -252,3 +288,30 @@ class JobStore(Protocol):
     def unregister_worker(self, worker_id: str) -> None: ...
 
     def live_workers(self, within_s: float) -> list[WorkerInfo]: ...
+
+    def job_tallies(self) -> list[JobTally]:
+        """Every running count of job events (:mod:`worker.store.tallies`), in one query."""
+
+    def queue_depth(self) -> dict[tuple[str, JobStatus], int]:
+        """How many jobs are accepted and running, by process, in one query."""
+
+    def create_key(self, name: str, secret_hash: str, admin: bool) -> ApiKey | None:
+        """Store a new key; None if the name is taken (revoked keys keep their names)."""
+
+    def seed_key(self, name: str, secret_hash: str, admin: bool) -> str:
+        """Make the key ``name`` have this secret: ``"created"``, ``"replaced"`` (another
+        secret was stored: it and its sessions stop working; the key is live again) or
+        ``"unchanged"`` (the same secret: a revoked key stays revoked)."""
+
+    def revoke_key(self, name: str) -> ApiKey | None:
+        """Revoke the key (at once, for every replica within a second); None if unknown."""
+
+    def api_keys(self) -> list[ApiKey]:
+        """Every key, revoked ones too, oldest first."""
+
+    def record_key_use(self, key_ids: Sequence[str], when: float) -> None:
+        """Set ``last_used`` of these keys."""
+
+    def shared_secret(self, name: str, generate: Callable[[], str]) -> str:
+        """The service-wide secret ``name``, made with ``generate`` by the first caller
+        (every replica then reads the same)."""

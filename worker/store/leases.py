@@ -38,10 +38,13 @@ class Leases:
         def _job_row(self, conn: Conn, job_id: str, lock: bool = False) -> Row | None: ...
         def _record(self, conn: Conn, row: Row) -> JobRecord: ...
         def _discard_artifact_data(self, job_id: str, keep_attempt: int | None = None) -> None: ...
+        def _tally_claim(self, conn: Conn, job_id: str, now: float) -> None: ...
+        def _tally_finish(self, conn: Conn, row: Row, status: JobStatus, now: float) -> None: ...
 
     # -- leases -----------------------------------------------------------------------
     def _reap(self, conn: Conn, row: Row, now: float) -> JobStatus:
-        """Requeue one running job whose lease expired, or fail it if out of attempts."""
+        """Requeue one running job whose lease expired, or fail it if out of attempts
+        (``row``: its job_id, process_id, attempts, max_attempts, worker_id, started)."""
         lost = f"worker {row['worker_id']} was lost during attempt {row['attempts']}"
         if row["attempts"] >= row["max_attempts"]:
             error = {
@@ -62,6 +65,7 @@ class Leases:
                     row["job_id"],
                 ),
             )
+            self._tally_finish(conn, row, JobStatus.FAILED, now)
             return JobStatus.FAILED
         self._exec(
             conn,
@@ -76,10 +80,12 @@ class Leases:
         """Requeue (or fail) every running job whose lease expired; the requeued IDs."""
         now = time.time()
         with self._write() as conn:
+            # In process order: the tallies' rows are then locked in one order.
             rows = self._all(
                 conn,
-                "SELECT job_id, attempts, max_attempts, worker_id FROM jobs "
-                f"WHERE status = ? AND lease_expires < ?{self.lock_clause}",
+                "SELECT job_id, process_id, attempts, max_attempts, worker_id, started "
+                "FROM jobs WHERE status = ? AND lease_expires < ? ORDER BY process_id, job_id"
+                f"{self.lock_clause}",
                 (_RUNNING, now),
             )
             outcomes = {r["job_id"]: self._reap(conn, r, now) for r in rows}
@@ -91,6 +97,7 @@ class Leases:
     def _take(self, conn: Conn, job_id: str, worker_id: str, lease_s: float) -> Claim:
         now = time.time()
         token = uuid.uuid4().hex
+        self._tally_claim(conn, job_id, now)
         self._exec(
             conn,
             """UPDATE jobs SET status = ?, lease_token = ?, lease_expires = ?,
@@ -170,7 +177,8 @@ class Leases:
         with self._write() as conn:
             row = self._one(
                 conn,
-                f"SELECT status FROM jobs WHERE job_id = ? AND lease_token = ?{self.lock_clause}",
+                "SELECT status, process_id, started FROM jobs WHERE job_id = ? AND "
+                f"lease_token = ?{self.lock_clause}",
                 (job_id, lease_token),
             )
             if row is None or row["status"] not in (_RUNNING, JobStatus.FAILED.value):
@@ -190,6 +198,7 @@ class Leases:
                         job_id,
                     ),
                 )
+                self._tally_finish(conn, row, JobStatus.FAILED, now)
         self._discard_artifact_data(job_id)
         return True
 

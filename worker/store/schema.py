@@ -124,4 +124,54 @@ MIGRATIONS: tuple[tuple[int, tuple[str, ...]], ...] = (
             "CREATE INDEX callbacks_due ON callbacks (next_try)",
         ),
     ),
+    (
+        5,
+        # Many users on one service.  Each job names its `owner` (the API key that
+        # created it; '' = anonymous, the open service's one owner).  Idempotency keys
+        # become unique per owner: SQLite cannot drop the old column-level UNIQUE
+        # without rebuilding `jobs` (and with foreign keys on, dropping the old table
+        # would cascade into artifacts and callbacks), so the keys move to a new column
+        # with a unique (owner, key) index and the old column stays, always NULL.
+        # `api_keys` holds each key's SHA-256 (never its secret); `key_id` changes when
+        # a secret is replaced, ending the sessions that name it.  `service_secrets`
+        # holds what every replica must share (the session-signing secret).
+        (
+            "ALTER TABLE jobs ADD COLUMN owner TEXT NOT NULL DEFAULT ''",
+            "ALTER TABLE jobs ADD COLUMN idempotency TEXT",
+            "UPDATE jobs SET idempotency = idempotency_key, idempotency_key = NULL "
+            "WHERE idempotency_key IS NOT NULL",
+            "CREATE UNIQUE INDEX jobs_owner_idempotency ON jobs (owner, idempotency)",
+            "CREATE INDEX jobs_owner_seq ON jobs (owner, seq)",
+            """CREATE TABLE api_keys (
+                name TEXT PRIMARY KEY,
+                key_id TEXT NOT NULL UNIQUE,
+                secret_hash TEXT NOT NULL UNIQUE,
+                admin INTEGER NOT NULL DEFAULT 0,
+                created {float} NOT NULL,
+                revoked {float},
+                last_used {float}
+            )""",
+            """CREATE TABLE service_secrets (
+                name TEXT PRIMARY KEY,
+                value TEXT NOT NULL
+            )""",
+        ),
+    ),
+    (
+        6,
+        # Running counts of job events for the metrics (worker.store.tallies), added to
+        # in the transaction of each event: submitted, attempts, retries, finished by
+        # status, and the duration and queue-wait histograms' buckets (`count` events
+        # in the bucket, `total` their seconds).  They start at zero here.
+        (
+            """CREATE TABLE job_tallies (
+                process_id TEXT NOT NULL,
+                tally TEXT NOT NULL,
+                label TEXT NOT NULL,
+                count {bigint} NOT NULL,
+                total {float} NOT NULL,
+                PRIMARY KEY (process_id, tally, label)
+            )""",
+        ),
+    ),
 )

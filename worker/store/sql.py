@@ -7,7 +7,9 @@ every write is one short transaction, and the rows a decision depends on are loc
 before the decision (``BEGIN IMMEDIATE`` in SQLite, ``SELECT ... FOR UPDATE`` in
 PostgreSQL).  Every public method is retried over transient faults
 (:mod:`worker.store.retry`); artifacts are handled in
-:class:`worker.store.artifact_index.ArtifactIndex`.
+:class:`worker.store.artifact_index.ArtifactIndex`, API keys in
+:class:`worker.store.api_keys.ApiKeys`.  Reads and dismissals take an optional
+``owner``: given, a job of another owner is as good as unknown.
 """
 
 from __future__ import annotations
@@ -24,6 +26,7 @@ from typing import Any, ClassVar
 
 from worker.contract import ArtifactInfo, JobRecord, JobStatus
 from worker.errors import IdempotencyConflict
+from worker.store.api_keys import ApiKeys
 from worker.store.artifact_index import ArtifactIndex
 from worker.store.base import JobFilter, JobPage, NewJob
 from worker.store.bookkeeping import Bookkeeping
@@ -32,6 +35,7 @@ from worker.store.job_listing import filter_clauses
 from worker.store.leases import Leases
 from worker.store.retry import Fault, retrying
 from worker.store.schema import MIGRATIONS
+from worker.store.tallies import Tallies
 
 __all__ = ["SqlJobStore", "decode_cursor", "encode_cursor"]
 
@@ -69,7 +73,7 @@ def decode_cursor(cursor: str) -> int:
         ) from exc
 
 
-class SqlJobStore(Leases, ArtifactIndex, Bookkeeping, Callbacks):
+class SqlJobStore(Leases, ArtifactIndex, Bookkeeping, Callbacks, ApiKeys, Tallies):
     """A :class:`worker.store.base.JobStore` over a DB-API connection."""
 
     #: Appended to a SELECT whose rows the transaction goes on to change.
@@ -120,9 +124,15 @@ class SqlJobStore(Leases, ArtifactIndex, Bookkeeping, Callbacks):
     def _all(self, conn: Conn, query: str, params: Sequence[Any] = ()) -> list[Row]:
         return list(self._exec(conn, query, params).fetchall())
 
-    def _job_row(self, conn: Conn, job_id: str, lock: bool = False) -> Row | None:
+    def _job_row(
+        self, conn: Conn, job_id: str, lock: bool = False, owner: str | None = None
+    ) -> Row | None:
         suffix = self.lock_clause if lock else ""
-        return self._one(conn, f"SELECT * FROM jobs WHERE job_id = ?{suffix}", (job_id,))
+        if owner is None:
+            return self._one(conn, f"SELECT * FROM jobs WHERE job_id = ?{suffix}", (job_id,))
+        return self._one(
+            conn, f"SELECT * FROM jobs WHERE job_id = ? AND owner = ?{suffix}", (job_id, owner)
+        )
 
     # -- schema -----------------------------------------------------------------------
     @retrying
@@ -171,6 +181,7 @@ class SqlJobStore(Leases, ArtifactIndex, Bookkeeping, Callbacks):
             error=json.loads(row["error"]) if row["error"] else None,
             worker_id=row["worker_id"],
             artifacts=artifacts,
+            owner=row["owner"],
         )
 
     def create_job(self, new: NewJob) -> tuple[JobRecord, bool]:
@@ -184,11 +195,11 @@ class SqlJobStore(Leases, ArtifactIndex, Bookkeeping, Callbacks):
         with self._write() as conn:
             # ON CONFLICT DO NOTHING: of concurrent submits with one idempotency key,
             # one inserts and the others wait for its commit, then find its row.
-            self._exec(
+            inserted = self._exec(
                 conn,
                 """INSERT INTO jobs (job_id, process_id, status, inputs, created, updated,
-                       max_attempts, time_limit_s, idempotency_key, request_hash, message)
-                   VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?) ON CONFLICT DO NOTHING""",
+                       max_attempts, time_limit_s, idempotency, request_hash, message, owner)
+                   VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?) ON CONFLICT DO NOTHING""",
                 (
                     job_id,
                     new.process_id,
@@ -201,13 +212,18 @@ class SqlJobStore(Leases, ArtifactIndex, Bookkeeping, Callbacks):
                     new.idempotency_key,
                     new.request_hash,
                     "queued",
+                    new.owner,
                 ),
             )
+            if inserted.rowcount == 1:
+                self._tally(conn, new.process_id, "submitted")
             row = self._job_row(conn, job_id)
             if row is not None:  # inserted now, or by this call's earlier ambiguous try
                 return self._record(conn, row), True
             row = self._one(
-                conn, "SELECT * FROM jobs WHERE idempotency_key = ?", (new.idempotency_key,)
+                conn,
+                "SELECT * FROM jobs WHERE owner = ? AND idempotency = ?",
+                (new.owner, new.idempotency_key),
             )
             if row is None:  # pragma: no cover - a job ID collision
                 raise RuntimeError(f"job {job_id} could not be created")
@@ -219,9 +235,9 @@ class SqlJobStore(Leases, ArtifactIndex, Bookkeeping, Callbacks):
             return self._record(conn, row), False
 
     @retrying
-    def get_job(self, job_id: str) -> JobRecord | None:
+    def get_job(self, job_id: str, *, owner: str | None = None) -> JobRecord | None:
         conn = self._conn()
-        row = self._job_row(conn, job_id)
+        row = self._job_row(conn, job_id, owner=owner)
         return None if row is None else self._record(conn, row)
 
     @retrying
@@ -246,11 +262,15 @@ class SqlJobStore(Leases, ArtifactIndex, Bookkeeping, Callbacks):
         status: JobStatus | None = None,
         process_id: str | None = None,
         where: JobFilter | None = None,
+        owner: str | None = None,
     ) -> JobPage:
         clauses: list[str] = []
         params: list[Any] = []
         if where is not None:
             clauses, params = filter_clauses(where, time.time())
+        if owner is not None:
+            clauses.append("owner = ?")
+            params.append(owner)
         if cursor is not None:
             clauses.append("seq < ?")
             params.append(decode_cursor(cursor))
@@ -271,13 +291,14 @@ class SqlJobStore(Leases, ArtifactIndex, Bookkeeping, Callbacks):
         return JobPage([self._record(conn, r) for r in rows], next_cursor)
 
     @retrying
-    def dismiss(self, job_id: str) -> JobRecord | None:
+    def dismiss(self, job_id: str, *, owner: str | None = None) -> JobRecord | None:
         now = time.time()
         with self._write() as conn:
-            row = self._job_row(conn, job_id, lock=True)
+            row = self._job_row(conn, job_id, lock=True, owner=owner)
             if row is None:
                 return None
             if row["status"] != JobStatus.DISMISSED.value:
+                self._tally_finish(conn, row, JobStatus.DISMISSED, now)
                 self._exec(conn, "DELETE FROM artifact_index WHERE job_id = ?", (job_id,))
                 self._exec(
                     conn,

@@ -62,3 +62,15 @@ def test_importing_the_command_line_loads_neither_server_nor_worker() -> None:
     )
     done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
     assert done.returncode == 0 and done.stdout.strip() == "[]"
+
+
+def test_a_bad_setting_exits_2_naming_it_without_its_value() -> None:
+    script = Path(sys.executable).parent / "dexlab"
+    command = [str(script)] if script.exists() else [sys.executable, "-m", "service"]
+    env = {**__import__("os").environ, "DEXLAB_API_KEYS": "s3cretvalue-with-no-name"}
+    done = subprocess.run(
+        [*command, "serve", "--port", "0"], capture_output=True, text=True, env=env, timeout=60
+    )
+    assert done.returncode == 2
+    assert "DEXLAB_API_KEYS" in done.stderr and "s3cretvalue" not in done.stderr
+    assert "Traceback" not in done.stderr
