@@ -45,6 +45,7 @@ from service.routes.process_operations import (
 from worker.dispatch import Dispatcher, make_dispatcher
 from worker.pool import WorkerPool
 from worker.processes import default_registry
+from worker.retention import RetentionSweeper
 from worker.store import open_store
 from worker.store.base import JobStore
 
@@ -108,11 +109,16 @@ def create_app(settings: ServiceSettings | None = None) -> FastAPI:
             metrics.watch_store(store, [d.id for d in registry],
                                 live_within_s=3 * settings.heartbeat_seconds + 1.0)  # fmt: skip
         if pool is not None:
-            pool.start()
+            pool.start()  # its supervisor also deletes expired jobs
+        retention = RetentionSweeper(settings, store) if pool is None else None
+        if retention is not None:
+            retention.start()
         try:
             yield
         finally:
             await app.state.watcher.stop()
+            if retention is not None:
+                retention.stop()
             if pool is not None:
                 pool.stop()
             if sweeper is not None:

@@ -60,6 +60,7 @@ def status_document(job: JobRecord, *, worker: bool = True, owner: bool = False)
         "attempts": job.attempts,
         "max_attempts": job.max_attempts,
         "time_limit_s": job.time_limit_s,
+        "expires": _iso(job.expires),
     }
     if worker:
         doc["worker_id"] = job.worker_id

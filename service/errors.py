@@ -25,10 +25,14 @@ from worker.errors import (
     IdempotencyConflict,
     InvalidInputs,
     JobDismissed,
+    JobExpired,
     JobFailed,
     NoSuchArtifact,
     NoSuchJob,
     NoSuchProcess,
+    QueueFull,
+    QuotaExceeded,
+    RateLimited,
     ResultNotReady,
     StorageError,
     StorageFull,
@@ -53,6 +57,10 @@ _SLUGS: dict[type[DexlabError], str] = {
     NoSuchArtifact: "no-such-artifact",
     ResultNotReady: "result-not-ready",
     JobDismissed: "job-dismissed",
+    JobExpired: "job-expired",
+    QuotaExceeded: "quota-exceeded",
+    RateLimited: "rate-limited",
+    QueueFull: "queue-full",
     JobFailed: "job-failed",
     StorageFull: "storage-full",
     StorageError: "storage-error",
@@ -69,12 +77,14 @@ def _slug(exc: DexlabError) -> str:
 
 
 def _retry_headers(exc: DexlabError, extra: dict[str, Any]) -> dict[str, str] | None:
-    """``Retry-After`` (whole seconds) for a store that is down for now;
-    ``WWW-Authenticate`` for a request without a valid key."""
+    """``Retry-After`` (whole seconds) for a store that is down for now and for a quota
+    or a full queue (when a slot or a token is due); ``WWW-Authenticate`` for a request
+    without a valid key."""
     hint = extra.pop("retry_after_s", None)
     if isinstance(exc, Unauthenticated):
         return {"WWW-Authenticate": exc.challenge}
-    if not isinstance(exc, StoreUnavailable) or isinstance(exc, StorageFull):
+    retryable = (StoreUnavailable, QuotaExceeded, QueueFull)
+    if not isinstance(exc, retryable) or isinstance(exc, StorageFull):
         return None
     seconds = hint if isinstance(hint, int | float) and hint > 0 else 5
     return {"Retry-After": str(max(1, math.ceil(seconds)))}

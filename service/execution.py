@@ -14,6 +14,7 @@ from typing import Any
 from fastapi import Request
 
 from service.job_watcher import JobWatcher
+from service.ogc.execute_request import InvalidRequest
 from worker.contract import JobRecord
 from worker.dispatch import Dispatcher
 from worker.processes import ProcessRegistry
@@ -21,7 +22,27 @@ from worker.settings import WorkerSettings
 from worker.store.base import JobStore
 from worker.submission import submit, synchronous_allowed
 
-__all__ = ["submit_job", "wait_while_connected"]
+__all__ = ["RETENTION_FIELD", "check_retention", "submit_job", "wait_while_connected"]
+
+#: The execute body's member (beside ``inputs``, in /v1 and OGC bodies) that asks for a
+#: shorter retention than the service's.
+RETENTION_FIELD = "retention_s"
+
+
+def check_retention(settings: WorkerSettings, retention_s: float | None) -> None:
+    """A requested retention must not exceed the service's (``DEXLAB_RESULT_TTL_S``);
+    the models already refuse one that is not a positive number."""
+    if retention_s is not None and retention_s > settings.result_ttl_s:
+        raise InvalidRequest(
+            [
+                {
+                    "field": RETENTION_FIELD,
+                    "message": f"Input should be at most {settings.result_ttl_s:g}, the "
+                    "longest this service keeps a finished job (DEXLAB_RESULT_TTL_S)",
+                    "type": "less_than_equal",
+                }
+            ]
+        )
 
 
 def submit_job(
@@ -34,13 +55,17 @@ def submit_job(
     dispatcher: Dispatcher,
     wants_sync: bool,
     owner: str = "",
+    retention_s: float | None = None,
 ) -> tuple[JobRecord, bool, bool]:
-    """Submit a job owned by ``owner`` (blocking store work, run in the threadpool);
-    ``(job, created, sync)``: ``sync`` when the client asked for a synchronous answer
-    and the process allows one for these inputs (its ``sync_cost_limit``)."""
+    """Submit a job owned by ``owner``, kept ``retention_s`` once finished (None: the
+    service's retention) (blocking store work, run in the threadpool); ``(job, created,
+    sync)``: ``sync`` when the client asked for a synchronous answer and the process
+    allows one for these inputs (its ``sync_cost_limit``)."""
+    check_retention(settings, retention_s)
     job, created = submit(
-        store, registry, settings, process_id, inputs, idempotency_key, dispatcher, owner
-    )
+        store, registry, settings, process_id, inputs, idempotency_key, dispatcher, owner,
+        retention_s,
+    )  # fmt: skip
     synchronous = wants_sync and synchronous_allowed(registry, process_id, inputs)
     return job, created, synchronous
 

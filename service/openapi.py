@@ -16,13 +16,14 @@ from typing import Any
 
 from fastapi import FastAPI
 from fastapi.openapi.utils import get_openapi
+from pydantic import BaseModel
 from pydantic.json_schema import models_json_schema
 
 from service.auth.public_routes import is_public
 from service.ogc.schemas import OGC_ROUTE_PROBLEMS, document_process_ids
 from service.problems import PROBLEM_TYPES
 from service.routes.process_operations import FAMILY_PAPERS, family_of
-from service.schemas import ROUTE_DOCUMENTS, document_schemas
+from service.schemas import RETENTION, ROUTE_DOCUMENTS, document_schemas
 from worker.processes import ProcessRegistry
 
 __all__ = ["PROBLEM_SCHEMA", "install_openapi"]
@@ -69,11 +70,12 @@ ROUTE_PROBLEMS: dict[tuple[str, str], tuple[int, ...]] = {
     ("get", "/health/ready"): (503,),
     ("get", "/v1/processes"): (422,),
     ("get", "/v1/processes/{process_id}"): (404, 422),
-    ("post", "/v1/processes/{process_id}/execution"): (400, 404, 413, 422, 503, 507),
+    ("post", "/v1/processes/{process_id}/execution"): (400, 404, 413, 422, 429, 503, 507),
     ("get", "/v1/jobs"): (403, 422, 503),
-    ("get", "/v1/jobs/{job_id}"): (404, 422, 503),
-    ("get", "/v1/jobs/{job_id}/events"): (404, 503),
-    ("delete", "/v1/jobs/{job_id}"): (404, 503),
+    # An expired job (its retention ended) is 410 for a while, then 404.
+    ("get", "/v1/jobs/{job_id}"): (404, 410, 422, 503),
+    ("get", "/v1/jobs/{job_id}/events"): (404, 410, 503),
+    ("delete", "/v1/jobs/{job_id}"): (404, 410, 503),
     # A failed job's results answer its failure's problem (job-error, worker-lost,
     # time-limit-exceeded: 500; storage-full: 507; storage-error: 503).
     ("get", "/v1/jobs/{job_id}/results"): (404, 410, 422, 503, 507),
@@ -81,6 +83,12 @@ ROUTE_PROBLEMS: dict[tuple[str, str], tuple[int, ...]] = {
     ("get", "/methods"): (),
     ("get", "/methods/{slug}"): (404,),
 }
+
+class _RetentionMember(BaseModel):
+    """The execute body's ``retention_s``, beside ``inputs``."""
+
+    retention_s: float | None = RETENTION
+
 
 #: A page, as the routes that negotiate (``?f=html``, ``Accept: text/html``) answer.
 HTML_PAGE: dict[str, Any] = {"schema": {"type": "string"}}
@@ -94,7 +102,10 @@ _DESCRIPTIONS = {
     "(`WWW-Authenticate: Bearer`).",
     403: "Refused: a parameter only an admin key may use.",
     404: "No such process, job or artifact, or the result is not ready yet.",
-    410: "The job was dismissed; its results are gone.",
+    410: "The job was dismissed, or it expired (its retention ended): its results "
+    "are gone.",
+    429: "A quota of this API key: too many jobs queued or submissions this minute "
+    "(`limit` names the setting; `Retry-After`).",
     413: "The request body is larger than the service accepts.",
     422: "Invalid inputs or parameters; `errors` names every bad field.",
     500: "An unexpected error (logged), or the failure of the job whose results were asked.",
@@ -156,6 +167,7 @@ def _process_bodies(
         ref_template="#/components/schemas/{model}",
     )
     document["components"]["schemas"].update(top.get("$defs", {}))
+    retention = _RetentionMember.model_json_schema()["properties"]["retention_s"]
     for definition in definitions:
         path = document["paths"].get(f"/v1/processes/{definition.id}/execution")
         if path is None or "post" not in path:
@@ -174,7 +186,10 @@ def _process_bodies(
             "type": "object",
             "required": ["inputs"],
             "additionalProperties": False,
-            "properties": {"inputs": refs[(definition.inputs_model, "validation")]},
+            "properties": {
+                "inputs": refs[(definition.inputs_model, "validation")],
+                "retention_s": retention,
+            },
         }
         content: dict[str, Any] = {"schema": schema}
         if examples:
@@ -184,7 +199,7 @@ def _process_bodies(
             "content": {"application/json": content},
         }
         statuses[("post", f"/v1/processes/{definition.id}/execution")] = (
-            400, 413, 422, 503, 507,
+            400, 413, 422, 429, 503, 507,
         )  # fmt: skip
     return statuses
 

@@ -37,6 +37,29 @@ PROBLEM_TYPES: dict[str, tuple[int, str, str]] = {
         404, "Result not ready", "The job has not finished yet; poll GET /v1/jobs/{jobID}.",
     ),
     "job-dismissed": (410, "Job dismissed", "The job was dismissed; its results are gone."),
+    "job-expired": (
+        410, "Job expired",
+        "The job finished longer ago than it was kept (its `expires`: DEXLAB_RESULT_TTL_S "
+        "or the request's `retention_s`), and it and its results were deleted.  An "
+        "expired job answers this for as long as it was kept (at most a day), then 404.",
+    ),
+    "quota-exceeded": (
+        429, "Quota exceeded",
+        "This API key has as many jobs queued as it may (`limit` names the setting, "
+        "`allowed` its value); submit again after `Retry-After` seconds, once one has "
+        "started.",
+    ),
+    "rate-limited": (
+        429, "Too many submissions",
+        "This API key submitted as many jobs this minute as it may (`limit`: "
+        "DEXLAB_SUBMIT_RATE_PER_MIN, `allowed`: its value); `Retry-After` says when the "
+        "next is allowed.",
+    ),
+    "queue-full": (
+        503, "Queue full",
+        "The whole queue holds as many jobs as the service takes (`limit`: "
+        "DEXLAB_MAX_QUEUED); submit again after `Retry-After` seconds.",
+    ),
     "job-failed": (500, "Job failed", "The job failed; `detail` says why."),
     "job-error": (500, "The job raised an error", "The job's code raised an exception."),
     "time-limit-exceeded": (

@@ -14,7 +14,18 @@ from typing import Any, Literal
 from pydantic import BaseModel, ConfigDict, Field
 from pydantic.json_schema import models_json_schema
 
-__all__ = ["DOCUMENT_SCHEMAS", "ROUTE_DOCUMENTS", "document_schemas"]
+__all__ = ["DOCUMENT_SCHEMAS", "RETENTION", "ROUTE_DOCUMENTS", "document_schemas"]
+
+#: The execute body's ``retention_s`` (a number, never a string or a boolean).
+RETENTION: Any = Field(
+    None,
+    gt=0,
+    allow_inf_nan=False,
+    strict=True,
+    description="Keep the finished job and its results this many seconds (at most, and "
+    "by default, the service's DEXLAB_RESULT_TTL_S); the status document's `expires` "
+    "says until when.",
+)
 
 
 class _Document(BaseModel):
@@ -59,6 +70,11 @@ class StatusDocument(_Document):
         None,
         description="The API key that created the job ('' = anonymous); with API keys, "
         "shown to admin keys only.",
+    )
+    expires: str | None = Field(
+        None,
+        description="When the finished job and its results are deleted (then 410 "
+        "job-expired, later 404); null while it is unfinished.",
     )
     links: list[Link]
     error: JobError | None = None

@@ -113,3 +113,5 @@ class JobRecord:
     artifacts: tuple[ArtifactInfo, ...] = field(default_factory=tuple)
     #: The API key name that created the job ('' = anonymous: the open service's owner).
     owner: str = ""
+    #: When the finished job and its files are deleted (None while it is unfinished).
+    expires: datetime | None = None

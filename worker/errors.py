@@ -12,6 +12,10 @@
     ├── ResultNotReady              the job has not finished yet
     ├── JobFailed                   the job finished without a result
     ├── JobDismissed                the job was dismissed (cancelled)
+    ├── JobExpired                  the job's retention ended: it and its results are gone
+    ├── QuotaExceeded               an API key has as many jobs queued as it may
+    │   └── RateLimited             an API key submitted as many jobs this minute as it may
+    ├── QueueFull                   the whole queue holds as many jobs as it may
     └── StoreUnavailable            the job store cannot be reached (or stays locked)
         ├── StorageFull             the store's disk is full
         └── StorageError            the store cannot read or write its files (corrupt,
@@ -33,10 +37,14 @@ __all__ = [
     "IdempotencyConflict",
     "InvalidInputs",
     "JobDismissed",
+    "JobExpired",
     "JobFailed",
     "NoSuchArtifact",
     "NoSuchJob",
     "NoSuchProcess",
+    "QueueFull",
+    "QuotaExceeded",
+    "RateLimited",
     "ResultNotReady",
     "StorageError",
     "StorageFull",
@@ -98,6 +106,24 @@ class JobFailed(DexlabError):
 
 class JobDismissed(DexlabError):
     """The job was dismissed; it has no results."""
+
+
+class JobExpired(DexlabError):
+    """The job's retention ended: the job and its results were deleted."""
+
+
+# A quota's ``extra`` names the limit (``limit``: its setting, ``allowed``: its value)
+# and when to retry (``retry_after_s``); the same for QueueFull.
+class QuotaExceeded(DexlabError):
+    """This API key has as many jobs queued as it may; retry when one has started."""
+
+
+class RateLimited(QuotaExceeded):
+    """This API key submitted as many jobs this minute as it may."""
+
+
+class QueueFull(DexlabError):
+    """The queue holds as many jobs as the service takes; retry later."""
 
 
 class StoreUnavailable(DexlabError):

@@ -6,6 +6,11 @@ next claim rather than after the lease runs out, and starts a new process in its
 A process that shows no sign of life for a lease (frozen, e.g. SIGSTOPped, perhaps
 holding SQLite's write lock) is killed.  A process that keeps dying at start-up (a
 broken store) is restarted after growing pauses (capped), and the log says why.
+
+The process in slot 0 prefers cheap jobs (:mod:`worker.store.scheduling`), so small
+jobs are not starved by expensive ones; every process runs at a lower scheduling
+priority than the supervisor and the API (``DEXLAB_WORKER_NICE``).  The supervisor also
+runs the retention sweeper (:mod:`worker.retention`).
 """
 
 from __future__ import annotations
@@ -22,6 +27,7 @@ from multiprocessing.process import BaseProcess
 from typing import Any
 
 from worker.errors import StoreUnavailable
+from worker.retention import RetentionSweeper
 from worker.runner import EXIT_STARTUP, worker_id_for, worker_main
 from worker.settings import WorkerSettings
 from worker.store.base import JobStore
@@ -61,6 +67,7 @@ class WorkerPool:
         self._lock = threading.Lock()
         self._stopping = threading.Event()
         self._monitor: threading.Thread | None = None
+        self._retention: RetentionSweeper | None = None
 
     # -- lifecycle ------------------------------------------------------------------
     def start(self) -> None:
@@ -69,10 +76,14 @@ class WorkerPool:
                 self._spawn(index)
         self._monitor = threading.Thread(target=self._watch, name="dexlab-pool", daemon=True)
         self._monitor.start()
+        self._retention = RetentionSweeper(self.settings, self.store)
+        self._retention.start()
         log.info("worker pool started with %d process(es)", len(self._slots))
 
     def stop(self, grace_s: float = 5.0) -> None:
         self._stopping.set()
+        if self._retention is not None:
+            self._retention.stop()
         if self._monitor is not None:
             self._monitor.join(timeout=5.0)
         with self._lock:
@@ -115,6 +126,7 @@ class WorkerPool:
                 os.getpid(),
                 slot.liveness,
                 logging.getLogger().getEffectiveLevel(),
+                index == 0,  # the slot that prefers cheap jobs
             ),
             name=f"dexlab-worker-{index}",
             daemon=False,

@@ -1,9 +1,12 @@
 """One worker process: claim a job, run it under a lease, store the outcome, repeat.
 
-While a job runs, a guard thread renews the lease.  It stops the whole process
-(``os._exit``) when the job is dismissed, when another attempt took the job over, or
-when the job's time limit passes (after recording the failure); the pool then starts
-a fresh process in its place.
+Claims take jobs in fair order (:mod:`worker.store.scheduling`); a loop made with
+``prefer_cheap`` takes a cheap job first when one is queued.  While a job runs, a guard
+thread renews the lease.  It stops the whole process (``os._exit``) when the job is
+dismissed, when another attempt took the job over, or when the job's time limit passes
+(after recording the failure); the pool then starts a fresh process in its place.
+Worker processes run at a lower scheduling priority than the API
+(:func:`lower_priority`), so requests stay quick while every core runs jobs.
 """
 
 from __future__ import annotations
@@ -30,7 +33,7 @@ from worker.settings import WorkerSettings
 from worker.store import open_store
 from worker.store.base import Claim, JobStore
 
-__all__ = ["AttemptGuard", "WorkerLoop", "worker_id_for", "worker_main"]
+__all__ = ["AttemptGuard", "WorkerLoop", "lower_priority", "worker_id_for", "worker_main"]
 
 log = logging.getLogger("dexlab.worker")
 
@@ -119,13 +122,27 @@ class WorkerLoop:
     """Claims and runs jobs until told to stop or orphaned by its parent."""
 
     def __init__(
-        self, settings: WorkerSettings, store: JobStore, registry: ProcessRegistry
+        self,
+        settings: WorkerSettings,
+        store: JobStore,
+        registry: ProcessRegistry,
+        prefer_cheap: bool = False,
     ) -> None:
         self.settings = settings
         self.store = store
         self.registry = registry
+        self.prefer_cheap = prefer_cheap
         self.worker_id = worker_id_for(os.getpid())
         self._stop = threading.Event()
+
+    def claim(self) -> Claim | None:
+        """The next job in fair order (a cheap one first if this loop prefers them)."""
+        return self.store.claim_next(
+            self.worker_id,
+            self.settings.lease_seconds,
+            prefer_cheap=self.prefer_cheap,
+            max_running_per_owner=self.settings.max_running_per_key,
+        )
 
     def request_stop(self) -> None:
         self._stop.set()
@@ -144,7 +161,7 @@ class WorkerLoop:
                     if time.monotonic() - last_beat >= self.settings.heartbeat_seconds:
                         self.store.worker_heartbeat(self.worker_id)
                         last_beat = time.monotonic()
-                    claim = self.store.claim_next(self.worker_id, self.settings.lease_seconds)
+                    claim = self.claim()
                 except StoreUnavailable as exc:
                     log.warning("worker %s: the store is unavailable (%s)", self.worker_id, exc)
                     self._stop.wait(trouble.next_pause())
@@ -248,26 +265,45 @@ def _beat_forever(liveness: Any) -> None:
         time.sleep(0.5)
 
 
+def lower_priority(increment: int, what: str) -> int:
+    """Lower this process's scheduling priority by ``increment`` (``os.nice``), log it
+    for ``what`` (e.g. "worker process 12"), and return the niceness it now has."""
+    before = os.nice(0)
+    now = os.nice(increment) if increment else before
+    log.info(
+        "%s runs at niceness %d (DEXLAB_WORKER_NICE=%d above the %d it started with), "
+        "so the API comes first",
+        what,
+        now,
+        increment,
+        before,
+    )
+    return now
+
+
 def worker_main(
     settings_data: dict[str, Any],
     parent_pid: int | None = None,
     liveness: Any = None,
     log_level: int = logging.INFO,
+    prefer_cheap: bool = False,
 ) -> None:
-    """Entry point of a pool process (spawned): build resources, then loop.  It logs
-    at its supervisor's ``log_level``, in ``DEXLAB_LOG_FORMAT`` (inherited)."""
+    """Entry point of a pool process (spawned): lower its priority, build resources,
+    then loop (taking cheap jobs first with ``prefer_cheap``).  It logs at its
+    supervisor's ``log_level``, in ``DEXLAB_LOG_FORMAT`` (inherited)."""
     configure_logging(level=log_level)
     if liveness is not None:
         threading.Thread(
             target=_beat_forever, args=(liveness,), name="liveness", daemon=True
         ).start()
     settings = WorkerSettings.model_validate(settings_data)
+    lower_priority(settings.worker_nice, f"worker process {os.getpid()}")
     try:
         store = open_store(settings.resolved_store_url(), retry_s=settings.store_retry_seconds)
     except Exception as exc:  # the supervisor backs off and says why
         log.error("worker process %d cannot open the job store: %s", os.getpid(), exc)
         sys.exit(EXIT_STARTUP)
-    loop = WorkerLoop(settings, store, default_registry())
+    loop = WorkerLoop(settings, store, default_registry(), prefer_cheap=prefer_cheap)
     signal.signal(signal.SIGTERM, lambda *_: loop.request_stop())
     signal.signal(signal.SIGINT, signal.SIG_IGN)  # the supervisor decides when we stop
     loop.run(parent_pid=parent_pid)

@@ -63,6 +63,45 @@ class WorkerSettings(BaseSettings):
     redispatch_after_s: float = Field(
         30.0, gt=0, description="Re-send an accepted job not claimed this long after dispatch."
     )
+    # -- sharing one service (quotas, retention, priority) -------------------------------
+    max_queued: int = Field(
+        10_000,
+        ge=1,
+        description="Jobs waiting in the whole queue; a submission beyond it is answered "
+        "503 with Retry-After.",
+    )
+    max_queued_per_key: int = Field(
+        50,
+        ge=1,
+        description="Jobs one API key may have waiting; beyond it, 429 (no limit for the "
+        "anonymous owner of a service without keys).",
+    )
+    max_running_per_key: int | None = Field(
+        None,
+        ge=1,
+        description="Jobs of one API key running at once; unset: no cap (claims skip a "
+        "key's jobs while it has this many running).",
+    )
+    submit_rate_per_min: int = Field(
+        120,
+        ge=0,
+        description="Submissions one API key may make per minute (a burst of this many, "
+        "then one every 60/N s); 0: no limit.",
+    )
+    result_ttl_s: float = Field(
+        604800.0,
+        gt=0,
+        le=10 * 365 * 86400,
+        description="How long a finished job and its files are kept (seconds); a request "
+        "may ask for less with `retention_s`.",
+    )
+    worker_nice: int = Field(
+        10,
+        ge=0,
+        le=19,
+        description="How much lower than their parent's the scheduling priority of worker "
+        "processes is (os.nice increment), so the API stays responsive.",
+    )
 
     def resolved_store_url(self) -> str:
         """The store URL, defaulting to the SQLite file in the data directory."""

@@ -1,7 +1,10 @@
 """Turning a client's request into a committed job: validate, price, store.
 
-Nothing is queued unless the inputs validate and the work fits the process's
-documented cost limit.
+Nothing is queued unless the inputs validate, the work fits the process's documented
+cost limit, and the queue has room: the store checks the quotas in the transaction
+that inserts the job (:mod:`worker.store.quotas`).  Per-key quotas apply to API keys;
+the anonymous owner of a service without keys (its operator) meets only the cap on the
+whole queue.
 """
 
 from __future__ import annotations
@@ -18,9 +21,16 @@ from worker.input_schema import schema_errors
 from worker.processes import ProcessDefinition, ProcessRegistry
 from worker.request_hash import request_hash
 from worker.settings import WorkerSettings
-from worker.store.base import JobStore, NewJob
+from worker.store.base import JobStore, NewJob, QueueLimits
 
-__all__ = ["field_errors", "request_hash", "submit", "synchronous_allowed", "validate_inputs"]
+__all__ = [
+    "field_errors",
+    "queue_limits",
+    "request_hash",
+    "submit",
+    "synchronous_allowed",
+    "validate_inputs",
+]
 
 
 def field_errors(exc: ValidationError, prefix: tuple[str | int, ...] = ()) -> list[dict[str, Any]]:
@@ -56,6 +66,18 @@ def validate_inputs(definition: ProcessDefinition, raw: Mapping[str, Any]) -> Ba
     return inputs
 
 
+def queue_limits(settings: WorkerSettings, owner: str) -> QueueLimits:
+    """The quotas a submission of ``owner`` must fit: an API key's (``owner`` is its
+    name) and the whole queue's; the anonymous owner ('') only the whole queue's."""
+    if owner == "":
+        return QueueLimits(max_queued=settings.max_queued)
+    return QueueLimits(
+        max_queued=settings.max_queued,
+        max_queued_per_owner=settings.max_queued_per_key,
+        submit_rate_per_min=settings.submit_rate_per_min or None,
+    )
+
+
 def submit(
     store: JobStore,
     registry: ProcessRegistry,
@@ -65,9 +87,12 @@ def submit(
     idempotency_key: str | None = None,
     dispatcher: Dispatcher | None = None,
     owner: str = "",
+    retention_s: float | None = None,
 ) -> tuple[JobRecord, bool]:
     """Validate, check the cost limit, commit a job owned by ``owner`` (an API key's
-    name; '' = anonymous), then dispatch it; ``(job, created)``.
+    name; '' = anonymous) within its quotas, then dispatch it; ``(job, created)``.
+    The finished job is kept ``retention_s`` seconds (at most, and by default,
+    ``settings.result_ttl_s``; the caller checks a requested value).
 
     The job is committed before it is dispatched, so a broker outage loses nothing (the
     sweeper sends it later); a replayed idempotent request is not dispatched again.  An
@@ -96,6 +121,9 @@ def submit(
         idempotency_key=idempotency_key,
         request_hash=request_hash(process_id, stored_inputs) if idempotency_key else None,
         owner=owner,
+        cheap=definition.sync_cost_limit > 0 and cost <= definition.sync_cost_limit,
+        retention_s=min(retention_s or settings.result_ttl_s, settings.result_ttl_s),
+        limits=queue_limits(settings, owner),
     )
     job, created = store.create_job(new)
     if created and dispatcher is not None:

@@ -78,6 +78,14 @@ class OgcExecuteRequest(_Strict):
     subscriber: OgcSubscriber | None = Field(
         None, description="Callback URIs (only hosts on the server's allow-list)."
     )
+    retention_s: float | None = Field(
+        None,
+        gt=0,
+        allow_inf_nan=False,
+        strict=True,
+        description="dexlab: keep the finished job and its results this many seconds "
+        "(at most, and by default, the service's DEXLAB_RESULT_TTL_S).",
+    )
 
 
 @dataclass(frozen=True)

@@ -10,7 +10,8 @@ from typing import Any
 from starlette.responses import Response
 
 from service.config import ServiceSettings
-from service.execution import submit_job
+from service.execution import check_retention, submit_job
+from service.job_lookup import find_job
 from service.ogc.execute_request import (
     OgcExecuteRequest,
     Presentation,
@@ -78,6 +79,7 @@ def submit_execute(
     A synchronous answer is possible when the process allows it for these inputs and
     a worker is up to run the job (else the wait could only time out)."""
     definition = definition_of(registry, process_id)
+    check_retention(settings, body.retention_s)
     presentation = presentation_of(body, process_outputs(definition))
     policy = outbound_policy(settings)
     subscriber = subscriber_of(body, policy)
@@ -86,7 +88,7 @@ def submit_execute(
     )
     job, created, sync = submit_job(
         store, registry, settings, process_id, inputs, idempotency_key, dispatcher, wants_sync,
-        owner,
+        owner, body.retention_s,
     )  # fmt: skip
     if created:
         options = {**presentation.to_json(), "base": base_url}
@@ -102,9 +104,7 @@ def finished_job(
     """A successful job (of ``owner``; None: anyone's) and its result; otherwise the
     exception that says why there are none (failed: the failure; dismissed or
     another owner's: no such job; else not ready)."""
-    job = store.get_job(job_id, owner=owner)
-    if job is None:
-        raise NoSuchJob(f"No job {job_id!r}.")
+    job = find_job(store, job_id, owner)
     if job.status is JobStatus.FAILED:
         raise JobFailed(jobID=job.job_id, error=dict(job.error or {}))
     if job.status is not JobStatus.DISMISSED and job.status is not JobStatus.SUCCESSFUL:

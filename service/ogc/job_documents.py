@@ -65,6 +65,10 @@ def status_info(job: JobRecord, urls: PublicUrls) -> dict[str, Any]:
         document["started"] = _iso(job.started)
     if job.finished is not None:
         document["finished"] = _iso(job.finished)
+    # dexlab's own member (statusInfo.yaml allows members it does not list): when the
+    # finished job and its results are deleted.
+    if job.expires is not None:
+        document["expires"] = _iso(job.expires)
     document["links"] = links
     return document
 

@@ -16,6 +16,7 @@ from starlette.responses import Response, StreamingResponse
 from service.auth import IdentityDep
 from service.deps import RegistryDep, StoreDep
 from service.documents import artifact_headers
+from service.job_lookup import find_job, missing_job
 from service.ogc import pages as ogc_pages
 from service.ogc.execute_request import Presentation
 from service.ogc.execution import finished_job, job_results
@@ -145,9 +146,7 @@ def get_job(
     identity: IdentityDep,
     f: FormatQuery = None,
 ) -> Response:
-    job = store.get_job(jobID, owner=identity.owner_scope)
-    if job is None:
-        raise NoSuchJob(f"No job {jobID!r}.")
+    job = find_job(store, jobID, identity.owner_scope)
     urls = public_urls(request)
     document = status_info(job, urls)
     if wants_html(request):
@@ -168,7 +167,7 @@ def dismiss_job(
 ) -> JSONResponse:
     job = store.dismiss(jobID, owner=identity.owner_scope)
     if job is None:
-        raise NoSuchJob(f"No job {jobID!r}.")
+        raise missing_job(store, jobID, identity.owner_scope)
     return JSONResponse(status_info(job, public_urls(request)))
 
 

@@ -116,6 +116,11 @@ class OgcStatusInfo(_Document):
     updated: str
     started: str | SkipJsonSchema[None] = None
     finished: str | SkipJsonSchema[None] = None
+    expires: str | SkipJsonSchema[None] = Field(
+        None,
+        description="dexlab: when the finished job and its results are deleted (absent "
+        "while it is unfinished); statusInfo.yaml allows members it does not list.",
+    )
     links: list[OgcLink]
 
 
@@ -156,12 +161,13 @@ OGC_ROUTE_PROBLEMS: dict[tuple[str, str], tuple[int, ...]] = {
     ("get", "/ogc/conformance"): (400,),
     ("get", "/ogc/processes"): (400,),
     ("get", "/ogc/processes/{processID}"): (400, 404),
-    ("post", "/ogc/processes/{processID}/execution"): (400, 404, 413, 422, 503, 507),
+    ("post", "/ogc/processes/{processID}/execution"): (400, 404, 413, 422, 429, 503, 507),
     ("get", "/ogc/jobs"): (400, 403, 404, 503),
-    ("get", "/ogc/jobs/{jobID}"): (400, 404, 503),
-    ("delete", "/ogc/jobs/{jobID}"): (404, 503),
-    ("get", "/ogc/jobs/{jobID}/results"): (400, 404, 503, 507),
-    ("get", "/ogc/jobs/{jobID}/results/{outputID}"): (400, 404, 503, 507),
+    # An expired job (its retention ended) is 410 for a while, then 404.
+    ("get", "/ogc/jobs/{jobID}"): (400, 404, 410, 503),
+    ("delete", "/ogc/jobs/{jobID}"): (404, 410, 503),
+    ("get", "/ogc/jobs/{jobID}/results"): (400, 404, 410, 503, 507),
+    ("get", "/ogc/jobs/{jobID}/results/{outputID}"): (400, 404, 410, 503, 507),
 }
 
 

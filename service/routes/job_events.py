@@ -15,7 +15,6 @@ import json
 import logging
 import time
 from collections.abc import AsyncIterator
-from functools import partial
 
 import anyio
 from fastapi import APIRouter
@@ -24,9 +23,10 @@ from starlette.concurrency import run_in_threadpool
 
 from service.auth import IdentityDep
 from service.deps import StoreDep
+from service.job_lookup import find_job
 from service.pages import PagesDep
 from worker.contract import TERMINAL_STATUSES, JobRecord
-from worker.errors import NoSuchJob, StoreUnavailable
+from worker.errors import StoreUnavailable
 from worker.store.base import JobStore
 
 __all__ = ["EVENT_STREAM", "router"]
@@ -102,9 +102,7 @@ async def job_events(
 ) -> StreamingResponse:
     """``progress`` events until the job ends (see the module docstring); a browser's
     EventSource sends its session cookie."""
-    job = await run_in_threadpool(partial(store.get_job, job_id, owner=identity.owner_scope))
-    if job is None:
-        raise NoSuchJob(f"No job {job_id!r}.")
+    job = await run_in_threadpool(find_job, store, job_id, identity.owner_scope)
     settings = pages.settings
     return StreamingResponse(
         _events(store, job, settings.event_poll_seconds, settings.event_stream_seconds),

@@ -1,7 +1,9 @@
 """``/v1/jobs``: status, listing, results, artifacts and dismissal.
 
 Each caller sees its own jobs (an admin key every owner's): another owner's job is
-404 ``no-such-job`` on every route, as if it did not exist.
+404 ``no-such-job`` on every route, as if it did not exist.  An expired job (its
+retention ended) is 410 ``job-expired`` for a while, then 404
+(:mod:`service.job_lookup`).
 """
 
 from __future__ import annotations
@@ -15,6 +17,7 @@ from fastapi.responses import HTMLResponse, StreamingResponse
 from service.auth import Identity, IdentityDep
 from service.deps import RegistryDep, StoreDep
 from service.documents import artifact_headers, results_document, status_document
+from service.job_lookup import find_job, missing_job
 from service.pages import FormatQuery, Pages, PagesDep, views, wants_html
 from worker.contract import JobRecord, JobStatus
 from worker.errors import (
@@ -22,7 +25,6 @@ from worker.errors import (
     JobDismissed,
     JobFailed,
     NoSuchArtifact,
-    NoSuchJob,
     ResultNotReady,
     StorageError,
 )
@@ -35,11 +37,9 @@ router = APIRouter(prefix="/v1/jobs", tags=["jobs"])
 
 
 def _job(store: JobStore, job_id: str, owner: str | None = None) -> JobRecord:
-    """The job, if it exists and ``owner`` (None: anyone) owns it; else no-such-job."""
-    job = store.get_job(job_id, owner=owner)
-    if job is None:
-        raise NoSuchJob(f"No job {job_id!r}.")
-    return job
+    """The job, if it exists and ``owner`` (None: anyone) owns it; else no-such-job
+    (or job-expired)."""
+    return find_job(store, job_id, owner)
 
 
 @router.get("", summary="List jobs, newest first", response_model=None)
@@ -126,7 +126,7 @@ def _job_page(
 def dismiss_job(job_id: str, store: StoreDep, identity: IdentityDep) -> dict[str, Any]:
     job = store.dismiss(job_id, owner=identity.owner_scope)
     if job is None:
-        raise NoSuchJob(f"No job {job_id!r}.")
+        raise missing_job(store, job_id, identity.owner_scope)
     return _status(job, identity)
 
 

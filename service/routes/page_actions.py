@@ -27,11 +27,19 @@ from starlette.concurrency import run_in_threadpool
 from service.auth import IdentityDep
 from service.deps import DispatcherDep, RegistryDep, SettingsDep, StoreDep
 from service.documents import job_href
+from service.errors import dexlab_problem
+from service.job_lookup import missing_job
 from service.pages import PagesDep, views
 from service.pages.forms import check_csrf, check_form_origin, read_form
 from service.problems import PROBLEM_TYPES, problem_type_uri
 from service.request_guard import json_depth
-from worker.errors import CostLimitExceeded, InvalidInputs, NoSuchJob, NoSuchProcess
+from worker.errors import (
+    CostLimitExceeded,
+    InvalidInputs,
+    NoSuchProcess,
+    QueueFull,
+    QuotaExceeded,
+)
 from worker.submission import submit
 
 __all__ = ["router"]
@@ -101,6 +109,7 @@ async def run_process(
     text = form.get("inputs", "")
     examples = views.example_forms(definition)
     index = _example_index(form.get("example", ""), len(examples))
+    retry_after: str | None = None
     try:
         inputs = _parse_inputs(text, settings.max_json_depth)
         job, _ = await run_in_threadpool(
@@ -113,16 +122,23 @@ async def run_process(
         problem = _problem("invalid-inputs", exc.detail, errors=exc.errors)
     except CostLimitExceeded as exc:
         problem = _problem("cost-limit-exceeded", exc.detail)
+    except (QuotaExceeded, QueueFull) as exc:  # the page says so, with Retry-After
+        answer = dexlab_problem(request, exc)
+        problem = json.loads(bytes(answer.body))
+        retry_after = answer.headers.get("Retry-After")
     else:
         return RedirectResponse(job_href(job.job_id), status_code=303)
     examples[index].update(text=text, problem=problem, rows=max(examples[index]["rows"], 8))
-    return await run_in_threadpool(
+    page = await run_in_threadpool(
         partial(views.process_page, examples=examples, status_code=problem["status"]),
         request,
         pages,
         registry,
         definition,
     )
+    if retry_after is not None:
+        page.headers["Retry-After"] = retry_after
+    return page
 
 
 @router.post("/jobs/{job_id}/dismiss", response_model=None)
@@ -133,5 +149,5 @@ async def dismiss_job(
     check_csrf(request, await read_form(request))
     job = await run_in_threadpool(partial(store.dismiss, job_id, owner=identity.owner_scope))
     if job is None:
-        raise NoSuchJob(f"No job {job_id!r}.")
+        raise await run_in_threadpool(missing_job, store, job_id, identity.owner_scope)
     return RedirectResponse(job_href(job_id), status_code=303)

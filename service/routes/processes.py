@@ -17,6 +17,7 @@ from service.job_watcher import JobWatcher
 from service.pages import FormatQuery, PagesDep, views, wants_html
 from service.preferences import requested_wait
 from service.routes.jobs import finished_document
+from service.schemas import RETENTION
 from worker.contract import JobRecord
 from worker.errors import NoSuchJob, NoSuchProcess
 from worker.store.base import JobStore
@@ -32,6 +33,7 @@ class ExecuteRequest(BaseModel):
     model_config = ConfigDict(extra="forbid")
 
     inputs: dict[str, Any] = Field(..., description="The process inputs (see its schema).")
+    retention_s: float | None = RETENTION
 
 
 @router.get("", summary="List the processes", response_model=None)
@@ -137,6 +139,7 @@ async def execute(
         dispatcher,
         wait is not None,
         identity.name,
+        body.retention_s,
     )
     response.headers["Location"] = job_href(job.job_id)
     if not created:

@@ -1,4 +1,12 @@
-"""Sending job IDs to Celery, and the sweeper that re-sends lost ones."""
+"""Sending job IDs to Celery, and the sweeper that re-sends lost ones.
+
+A message names a job, but its delivery claims the next job in fair order
+(:mod:`worker.dispatch.celery_worker`), which may be another job with a longer time
+limit: so each message's Celery hard time limit is the longest any job may run (the
+longest process time limit, capped as :meth:`WorkerSettings.time_limit_for` caps
+every job's, and kept below the broker's redelivery window) plus a grace.  It is a
+backstop: the worker's own guard stops a job at its own limit and records why.
+"""
 
 from __future__ import annotations
 
@@ -10,7 +18,7 @@ from worker.dispatch.celery_app import RUN_JOB, create_celery_app
 from worker.settings import WorkerSettings
 from worker.store.base import JobStore
 
-__all__ = ["CeleryDispatch", "Sweeper"]
+__all__ = ["CeleryDispatch", "Sweeper", "hard_time_limit", "longest_time_limit"]
 
 log = logging.getLogger("dexlab.dispatch")
 
@@ -25,6 +33,7 @@ class CeleryDispatch:
         self.settings = settings
         self.store = store
         self.app = create_celery_app(settings)
+        self._longest_s = longest_time_limit(settings)
 
     def dispatch(self, job_id: str, time_limit_s: float) -> None:
         try:
@@ -33,7 +42,7 @@ class CeleryDispatch:
                 args=[job_id],
                 task_id=job_id,
                 queue=self.settings.queue,
-                time_limit=time_limit_s + HARD_LIMIT_GRACE_S,
+                time_limit=hard_time_limit(self.settings, max(time_limit_s, self._longest_s)),
                 retry=True,
                 retry_policy={"max_retries": 2, "interval_start": 0.2, "interval_step": 0.5},
             )
@@ -44,6 +53,25 @@ class CeleryDispatch:
 
     def close(self) -> None:
         self.app.close()
+
+
+def longest_time_limit(settings: WorkerSettings) -> float:
+    """The longest time limit any job of the registered processes gets (seconds)."""
+    from worker.processes import default_registry
+
+    return max((settings.time_limit_for(d.time_limit_s) for d in default_registry()),
+               default=0.0)  # fmt: skip
+
+
+def hard_time_limit(settings: WorkerSettings, time_limit_s: float) -> float:
+    """Celery's hard limit for a message whose job may run ``time_limit_s``: a grace
+    beyond it, but short of the broker's redelivery window (a message must never be
+    handed out again while its job runs)."""
+    limit = time_limit_s + HARD_LIMIT_GRACE_S
+    window = settings.broker_redelivery_window_s()
+    if window is not None:
+        limit = min(limit, max(time_limit_s, 0.95 * window))
+    return limit
 
 
 class Sweeper(threading.Thread):

@@ -11,6 +11,7 @@ from worker.store.base import (
     JobPage,
     JobStore,
     NewJob,
+    QueueLimits,
     StoredArtifact,
     WorkerInfo,
 )
@@ -24,6 +25,7 @@ __all__ = [
     "JobPage",
     "JobStore",
     "NewJob",
+    "QueueLimits",
     "StoredArtifact",
     "WorkerInfo",
     "open_store",

@@ -151,8 +151,9 @@ class ArtifactIndex:
                 self._exec(
                     conn,
                     "UPDATE jobs SET result = ?, status = ?, progress = 100, finished = ?, "
-                    "updated = ?, message = 'finished', lease_expires = NULL WHERE job_id = ?",
-                    (payload, _SUCCESSFUL, now, now, job_id),
+                    "updated = ?, expires = ? + retention_s, message = 'finished', "
+                    "lease_expires = NULL WHERE job_id = ?",
+                    (payload, _SUCCESSFUL, now, now, now, job_id),
                 )
                 self._tally_finish(conn, row, JobStatus.SUCCESSFUL, now)
         if not owner:

@@ -25,9 +25,27 @@ __all__ = [
     "JobStore",
     "JobTally",
     "NewJob",
+    "QueueLimits",
     "StoredArtifact",
     "WorkerInfo",
 ]
+
+
+#: A finished job's retention when nothing else is said (seconds; 7 days).
+DEFAULT_RETENTION_S = 604800.0
+
+
+@dataclass(frozen=True)
+class QueueLimits:
+    """The quotas a new job must fit, checked in the transaction that inserts it (None:
+    no such limit).  See :mod:`worker.store.quotas`."""
+
+    #: Jobs waiting in the whole queue.
+    max_queued: int | None = None
+    #: Jobs the owner may have waiting.
+    max_queued_per_owner: int | None = None
+    #: Submissions the owner may make per minute (a token bucket of this size).
+    submit_rate_per_min: int | None = None
 
 
 @dataclass(frozen=True)
@@ -42,6 +60,16 @@ class NewJob:
     request_hash: str | None = None
     #: The API key name submitting it ('' = anonymous); idempotency keys are per owner.
     owner: str = ""
+    #: Whether it costs at most its process's ``sync_cost_limit`` (a cheap job, which
+    #: one worker slot prefers).
+    cheap: bool = False
+    #: Seconds the job and its files are kept once it has finished.
+    retention_s: float = DEFAULT_RETENTION_S
+    #: The quotas to check (none by default: the submission path sets them).
+    limits: QueueLimits = QueueLimits()
+    #: The job that created this one for itself (None: a client's job).  Such work
+    #: counts as its parent: quotas count only jobs without a parent.
+    parent_id: str | None = None
 
 
 @dataclass(frozen=True)
@@ -57,8 +85,10 @@ class ClaimAttempt:
     """The outcome of claiming one named job (a broker delivered its ID).
 
     ``claim`` is set when this worker now runs it.  Otherwise ``status`` says why not
-    (None: no such job): finished or dismissed (drop the message), or running under
-    another worker's live lease, which ends in ``retry_after_s`` seconds unless renewed.
+    (None: no such job): finished or dismissed (drop the message); running under
+    another worker's live lease, which ends in ``retry_after_s`` seconds unless renewed;
+    or accepted but its owner runs as many jobs as it may (try again in
+    ``retry_after_s``).
     """
 
     claim: Claim | None
@@ -172,8 +202,10 @@ class JobStore(Protocol):
     def create_job(self, new: NewJob) -> tuple[JobRecord, bool]:
         """Commit a new job; ``(job, created)``.  A known idempotency key (of the same
         owner) with the same request hash returns the existing job with
-        ``created=False``; with another hash it raises
-        :class:`worker.errors.IdempotencyConflict`."""
+        ``created=False`` (a replay: no quota is checked); with another hash it raises
+        :class:`worker.errors.IdempotencyConflict`.  A new job must fit ``new.limits``,
+        checked atomically with the insert, else :class:`worker.errors.QuotaExceeded`,
+        :class:`worker.errors.RateLimited` or :class:`worker.errors.QueueFull`."""
 
     def get_job(self, job_id: str, *, owner: str | None = None) -> JobRecord | None:
         """The job; None if unknown, or when ``owner`` is given and owns it not."""
@@ -219,11 +251,29 @@ class JobStore(Protocol):
         """Record a send's outcome: delivered, or retry after ``retry_after_s`` (after
         ``max_attempts`` tries, given up).  False if the claim was lost meanwhile."""
 
-    def claim_next(self, worker_id: str, lease_s: float) -> Claim | None:
-        """Requeue or fail jobs whose lease expired, then claim the oldest accepted job."""
+    def claim_next(
+        self,
+        worker_id: str,
+        lease_s: float,
+        *,
+        prefer_cheap: bool = False,
+        max_running_per_owner: int | None = None,
+    ) -> Claim | None:
+        """Requeue or fail jobs whose lease expired, then claim the next accepted job in
+        fair order (:mod:`worker.store.scheduling`): the owner whose last claim is
+        oldest, then its oldest job; with ``prefer_cheap``, a cheap job if one is queued;
+        an owner with ``max_running_per_owner`` jobs running is skipped."""
 
-    def claim_job(self, job_id: str, worker_id: str, lease_s: float) -> ClaimAttempt:
-        """Claim this job if it is accepted, or running under an expired lease."""
+    def claim_job(
+        self,
+        job_id: str,
+        worker_id: str,
+        lease_s: float,
+        *,
+        max_running_per_owner: int | None = None,
+    ) -> ClaimAttempt:
+        """Claim this job if it is accepted (and its owner runs fewer than
+        ``max_running_per_owner`` jobs), or running under an expired lease."""
 
     def reap_expired(self) -> list[str]:
         """Requeue (or fail, when out of attempts) running jobs whose lease expired;
@@ -294,6 +344,17 @@ class JobStore(Protocol):
 
     def queue_depth(self) -> dict[tuple[str, JobStatus], int]:
         """How many jobs are accepted and running, by process, in one query."""
+
+    def expire_jobs(self, limit: int) -> list[str]:
+        """Delete up to ``limit`` jobs whose retention ended, and their files, leaving a
+        tombstone of each (:mod:`worker.store.retention`); the deleted IDs."""
+
+    def forget_expired(self, limit: int) -> int:
+        """Delete up to ``limit`` tombstones past their grace period; how many."""
+
+    def expired_at(self, job_id: str, *, owner: str | None = None) -> datetime | None:
+        """When the job expired, if it did and its tombstone is kept (None otherwise, or
+        when ``owner`` is given and owned it not)."""
 
     def create_key(self, name: str, secret_hash: str, admin: bool) -> ApiKey | None:
         """Store a new key; None if the name is taken (revoked keys keep their names)."""

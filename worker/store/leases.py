@@ -1,5 +1,6 @@
-"""Leases: claiming jobs, renewing and reaping leases, and the writes an attempt
-fences with its lease token (progress, failure)."""
+"""Leases: taking a claimed job, renewing and reaping leases, and the writes an
+attempt fences with its lease token (progress, failure).  Which job a claim takes is
+:mod:`worker.store.scheduling`'s."""
 
 from __future__ import annotations
 
@@ -11,7 +12,7 @@ from contextlib import AbstractContextManager
 from typing import TYPE_CHECKING, Any
 
 from worker.contract import JobRecord, JobStatus
-from worker.store.base import Claim, ClaimAttempt, HeartbeatAck
+from worker.store.base import Claim, HeartbeatAck
 from worker.store.retry import retrying
 
 __all__ = ["Leases"]
@@ -55,10 +56,12 @@ class Leases:
             self._exec(
                 conn,
                 "UPDATE jobs SET status = ?, error = ?, finished = ?, updated = ?, "
-                "lease_token = NULL, lease_expires = NULL, message = ? WHERE job_id = ?",
+                "expires = ? + retention_s, lease_token = NULL, lease_expires = NULL, "
+                "message = ? WHERE job_id = ?",
                 (
                     JobStatus.FAILED.value,
                     json.dumps(error),
+                    now,
                     now,
                     now,
                     error["detail"],
@@ -110,36 +113,6 @@ class Leases:
         return Claim(self._record(conn, self._job_row(conn, job_id)), token)
 
     @retrying
-    def claim_next(self, worker_id: str, lease_s: float) -> Claim | None:
-        self.reap_expired()
-        with self._write() as conn:
-            row = self._one(
-                conn,
-                f"SELECT job_id FROM jobs WHERE status = ? ORDER BY seq LIMIT 1"
-                f"{self.lock_clause}{' SKIP LOCKED' if self.lock_clause else ''}",
-                (_ACCEPTED,),
-            )
-            if row is None:
-                return None
-            return self._take(conn, row["job_id"], worker_id, lease_s)
-
-    @retrying
-    def claim_job(self, job_id: str, worker_id: str, lease_s: float) -> ClaimAttempt:
-        now = time.time()
-        with self._write() as conn:
-            row = self._job_row(conn, job_id, lock=True)
-            if row is None:
-                return ClaimAttempt(None, None, None)
-            status = JobStatus(row["status"])
-            if status is JobStatus.RUNNING:
-                if row["lease_expires"] is not None and row["lease_expires"] >= now:
-                    return ClaimAttempt(None, status, row["lease_expires"] - now)
-                status = self._reap(conn, row, now)
-            if status is not JobStatus.ACCEPTED:
-                return ClaimAttempt(None, status, None)
-            return ClaimAttempt(self._take(conn, job_id, worker_id, lease_s), status, None)
-
-    @retrying
     def heartbeat(self, job_id: str, lease_token: str, lease_s: float) -> HeartbeatAck:
         with self._write() as conn:
             cur = self._exec(
@@ -188,10 +161,12 @@ class Leases:
                 self._exec(
                     conn,
                     "UPDATE jobs SET status = ?, error = ?, finished = ?, updated = ?, "
-                    "message = ?, lease_expires = NULL WHERE job_id = ?",
+                    "expires = ? + retention_s, message = ?, lease_expires = NULL "
+                    "WHERE job_id = ?",
                     (
                         JobStatus.FAILED.value,
                         json.dumps(dict(error)),
+                        now,
                         now,
                         now,
                         str(error.get("detail", "failed")),

@@ -30,6 +30,8 @@ __all__ = ["PostgresJobStore"]
 
 #: Key of the advisory lock held while migrating (any constant unique to dexlab).
 _MIGRATION_LOCK = 0x646578_6C6162
+#: Key of the advisory lock that serialises submissions (quotas: worker.store.quotas).
+_SUBMISSION_LOCK = 0x646578_717565
 #: A session idle inside a transaction this long is ended by the server (ms).
 IDLE_IN_TRANSACTION_MS = 10_000
 
@@ -106,6 +108,12 @@ class PostgresJobStore(SqlJobStore):
 
     def _lock_schema(self, conn: Any) -> None:
         self._exec(conn, "SELECT pg_advisory_xact_lock(?)", (_MIGRATION_LOCK,))
+
+    def _lock_submissions(self, conn: Any) -> None:
+        # Every replica's submissions queue here until the inserting transaction ends,
+        # so a quota's count and the insert it admits are one step (READ COMMITTED
+        # would otherwise let two submissions count the same free slot).
+        self._exec(conn, "SELECT pg_advisory_xact_lock(?)", (_SUBMISSION_LOCK,))
 
     def classify(self, exc: BaseException) -> Fault:
         import psycopg

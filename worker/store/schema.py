@@ -174,4 +174,39 @@ MIGRATIONS: tuple[tuple[int, tuple[str, ...]], ...] = (
             )""",
         ),
     ),
+    (
+        7,
+        # Sharing one service: quotas, fair claims, retention (worker.store.quotas,
+        # .scheduling, .retention).  Each job records whether it is `cheap` (within its
+        # process's sync_cost_limit), the `parent_id` of work a job makes for itself
+        # (quotas count jobs without one), its `retention_s` once finished, and when it
+        # `expires` (set as it finishes; jobs finished before this migration keep 7
+        # days).  `job_owners` holds, per owner, when a claim last took one of its jobs
+        # (the round-robin order) and its submission token bucket.  `expired_jobs` holds
+        # the tombstones of deleted jobs (410 until `forget`, then 404).
+        (
+            "ALTER TABLE jobs ADD COLUMN cheap INTEGER NOT NULL DEFAULT 0",
+            "ALTER TABLE jobs ADD COLUMN parent_id TEXT",
+            "ALTER TABLE jobs ADD COLUMN retention_s {float} NOT NULL DEFAULT 604800",
+            "ALTER TABLE jobs ADD COLUMN expires {float}",
+            "UPDATE jobs SET expires = finished + retention_s WHERE finished IS NOT NULL",
+            "CREATE INDEX jobs_expires ON jobs (expires)",
+            "CREATE INDEX jobs_owner_queue ON jobs (owner, status, seq)",
+            "CREATE INDEX jobs_owner_cheap_queue ON jobs (owner, status, cheap, seq)",
+            """CREATE TABLE job_owners (
+                owner TEXT PRIMARY KEY,
+                last_claim {float} NOT NULL DEFAULT 0,
+                tokens {float},
+                refilled {float}
+            )""",
+            "INSERT INTO job_owners (owner) SELECT DISTINCT owner FROM jobs",
+            """CREATE TABLE expired_jobs (
+                job_id TEXT PRIMARY KEY,
+                owner TEXT NOT NULL,
+                expired {float} NOT NULL,
+                forget {float} NOT NULL
+            )""",
+            "CREATE INDEX expired_jobs_forget ON expired_jobs (forget)",
+        ),
+    ),
 )

@@ -8,8 +8,11 @@ before the decision (``BEGIN IMMEDIATE`` in SQLite, ``SELECT ... FOR UPDATE`` in
 PostgreSQL).  Every public method is retried over transient faults
 (:mod:`worker.store.retry`); artifacts are handled in
 :class:`worker.store.artifact_index.ArtifactIndex`, API keys in
-:class:`worker.store.api_keys.ApiKeys`.  Reads and dismissals take an optional
-``owner``: given, a job of another owner is as good as unknown.
+:class:`worker.store.api_keys.ApiKeys`, claims in
+:class:`worker.store.scheduling.Scheduling` (fair order) and
+:class:`worker.store.leases.Leases`, quotas in :class:`worker.store.quotas.Quotas`,
+retention in :class:`worker.store.retention.Retention`.  Reads and dismissals take an
+optional ``owner``: given, a job of another owner is as good as unknown.
 """
 
 from __future__ import annotations
@@ -33,7 +36,10 @@ from worker.store.bookkeeping import Bookkeeping
 from worker.store.callbacks import Callbacks
 from worker.store.job_listing import filter_clauses
 from worker.store.leases import Leases
+from worker.store.quotas import Quotas
+from worker.store.retention import Retention
 from worker.store.retry import Fault, retrying
+from worker.store.scheduling import Scheduling
 from worker.store.schema import MIGRATIONS
 from worker.store.tallies import Tallies
 
@@ -73,7 +79,9 @@ def decode_cursor(cursor: str) -> int:
         ) from exc
 
 
-class SqlJobStore(Leases, ArtifactIndex, Bookkeeping, Callbacks, ApiKeys, Tallies):
+class SqlJobStore(
+    Scheduling, Leases, Quotas, Retention, ArtifactIndex, Bookkeeping, Callbacks, ApiKeys, Tallies
+):
     """A :class:`worker.store.base.JobStore` over a DB-API connection."""
 
     #: Appended to a SELECT whose rows the transaction goes on to change.
@@ -182,6 +190,7 @@ class SqlJobStore(Leases, ArtifactIndex, Bookkeeping, Callbacks, ApiKeys, Tallie
             worker_id=row["worker_id"],
             artifacts=artifacts,
             owner=row["owner"],
+            expires=_ts(row["expires"]),
         )
 
     def create_job(self, new: NewJob) -> tuple[JobRecord, bool]:
@@ -193,13 +202,22 @@ class SqlJobStore(Leases, ArtifactIndex, Bookkeeping, Callbacks, ApiKeys, Tallie
     def _create_job(self, new: NewJob, job_id: str) -> tuple[JobRecord, bool]:
         now = time.time()
         with self._write() as conn:
-            # ON CONFLICT DO NOTHING: of concurrent submits with one idempotency key,
-            # one inserts and the others wait for its commit, then find its row.
+            self._lock_submissions(conn)  # quotas are checked atomically with the insert
+            row = self._job_row(conn, job_id)
+            if row is not None:  # this call's earlier, ambiguous try committed
+                return self._record(conn, row), True
+            replayed = self._replay(conn, new)
+            if replayed is not None:  # an idempotent replay makes nothing, counts nothing
+                return replayed, False
+            self._admit(conn, new, now)
+            # ON CONFLICT DO NOTHING: a concurrent submit with this idempotency key that
+            # got in first (where submissions are not serialised) is found below.
             inserted = self._exec(
                 conn,
                 """INSERT INTO jobs (job_id, process_id, status, inputs, created, updated,
-                       max_attempts, time_limit_s, idempotency, request_hash, message, owner)
-                   VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?) ON CONFLICT DO NOTHING""",
+                       max_attempts, time_limit_s, idempotency, request_hash, message, owner,
+                       cheap, retention_s, parent_id)
+                   VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?) ON CONFLICT DO NOTHING""",
                 (
                     job_id,
                     new.process_id,
@@ -213,26 +231,37 @@ class SqlJobStore(Leases, ArtifactIndex, Bookkeeping, Callbacks, ApiKeys, Tallie
                     new.request_hash,
                     "queued",
                     new.owner,
+                    1 if new.cheap else 0,
+                    new.retention_s,
+                    new.parent_id,
                 ),
             )
             if inserted.rowcount == 1:
                 self._tally(conn, new.process_id, "submitted")
-            row = self._job_row(conn, job_id)
-            if row is not None:  # inserted now, or by this call's earlier ambiguous try
-                return self._record(conn, row), True
-            row = self._one(
-                conn,
-                "SELECT * FROM jobs WHERE owner = ? AND idempotency = ?",
-                (new.owner, new.idempotency_key),
-            )
-            if row is None:  # pragma: no cover - a job ID collision
+                return self._record(conn, self._job_row(conn, job_id)), True
+            replayed = self._replay(conn, new)
+            if replayed is None:  # pragma: no cover - a job ID collision
                 raise RuntimeError(f"job {job_id} could not be created")
-            if row["request_hash"] != new.request_hash:
-                raise IdempotencyConflict(
-                    "This Idempotency-Key was already used with a different request "
-                    f"body (job {row['job_id']}); use a new key for a new request."
-                )
-            return self._record(conn, row), False
+            return replayed, False
+
+    def _replay(self, conn: Conn, new: NewJob) -> JobRecord | None:
+        """The owner's job with ``new``'s idempotency key (None: none); another request
+        body with that key is a conflict."""
+        if new.idempotency_key is None:
+            return None
+        row = self._one(
+            conn,
+            "SELECT * FROM jobs WHERE owner = ? AND idempotency = ?",
+            (new.owner, new.idempotency_key),
+        )
+        if row is None:
+            return None
+        if row["request_hash"] != new.request_hash:
+            raise IdempotencyConflict(
+                "This Idempotency-Key was already used with a different request "
+                f"body (job {row['job_id']}); use a new key for a new request."
+            )
+        return self._record(conn, row)
 
     @retrying
     def get_job(self, job_id: str, *, owner: str | None = None) -> JobRecord | None:
@@ -303,8 +332,9 @@ class SqlJobStore(Leases, ArtifactIndex, Bookkeeping, Callbacks, ApiKeys, Tallie
                 self._exec(
                     conn,
                     "UPDATE jobs SET status = ?, result = NULL, finished = COALESCE(finished, ?),"
-                    " updated = ?, message = 'dismissed by the client' WHERE job_id = ?",
-                    (JobStatus.DISMISSED.value, now, now, job_id),
+                    " expires = COALESCE(finished, ?) + retention_s, updated = ?,"
+                    " message = 'dismissed by the client' WHERE job_id = ?",
+                    (JobStatus.DISMISSED.value, now, now, now, job_id),
                 )
             record = self._record(conn, self._job_row(conn, job_id))
         self._discard_artifact_data(job_id)

@@ -9,7 +9,7 @@ import pytest
 from pydantic import BaseModel, ConfigDict, Field
 
 from worker.contract import JobContext, JobOutcome
-from worker.errors import CostLimitExceeded, InvalidInputs, NoSuchProcess
+from worker.errors import CostLimitExceeded, InvalidInputs, NoSuchProcess, QueueFull, QuotaExceeded
 from worker.processes import ProcessDefinition, ProcessRegistry, default_registry
 from worker.settings import WorkerSettings
 from worker.store import open_store
@@ -110,3 +110,35 @@ def test_every_worked_example_matches_its_published_schema() -> None:
     for definition in default_registry():
         for example in definition.examples:
             validate_inputs(definition, example.inputs)
+
+
+# -- what a submission records for scheduling and retention ----------------------------
+
+
+def test_cheapness_and_retention_are_recorded_at_submission(tmp_path: Path) -> None:
+    store = open_store(f"sqlite:///{tmp_path / 'j.db'}")
+    registry = default_registry()
+    settings = WorkerSettings(result_ttl_s=3600)
+    small = {"lengths": [2, 7, 9, 6], "ground": 1}
+    job, _ = submit(store, registry, settings, "fourbar-grashof", small)
+    big = {"links": [15, 14, 8], "grid": {"points_per_axis": 201}}
+    heavy, _ = submit(store, registry, settings, "planar3r-dexterity-map", big, retention_s=60)
+    row = store._one(store._conn(), "SELECT cheap, retention_s FROM jobs WHERE job_id = ?",  # type: ignore[attr-defined]
+                     (job.job_id,))
+    assert row["cheap"] == 1 and row["retention_s"] == 3600
+    row = store._one(store._conn(), "SELECT cheap, retention_s FROM jobs WHERE job_id = ?",  # type: ignore[attr-defined]
+                     (heavy.job_id,))
+    assert row["cheap"] == 0 and row["retention_s"] == 60
+
+
+def test_an_api_keys_submissions_meet_its_quota(tmp_path: Path) -> None:
+    store = open_store(f"sqlite:///{tmp_path / 'j.db'}")
+    settings = WorkerSettings(max_queued_per_key=2, max_queued=3)
+    inputs = {"sizes": [1], "inner": {"n": 1}}
+    for _ in range(2):
+        submit(store, REGISTRY, settings, "toy", inputs, owner="alice")
+    with pytest.raises(QuotaExceeded):
+        submit(store, REGISTRY, settings, "toy", inputs, owner="alice")
+    submit(store, REGISTRY, settings, "toy", inputs)  # anonymous: only the whole queue
+    with pytest.raises(QueueFull):
+        submit(store, REGISTRY, settings, "toy", inputs)
