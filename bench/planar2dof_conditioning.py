@@ -34,12 +34,12 @@ from collections.abc import Callable
 
 import numpy as np
 
-from worker.jobs.planar2dof.discretisation import (
+from worker.families.planar_parallel.discretisation import (
     RECTANGLE_BOUNDARY_SAMPLES,
     RECTANGLE_COLUMNS,
     RECTANGLE_ROWS,
 )
-from worker.kinematics.planar_parallel import (
+from worker.families.planar_parallel.kinematics import (
     Architecture,
     conditioning_map,
     design_sweep,

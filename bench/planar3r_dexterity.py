@@ -27,7 +27,7 @@ from collections.abc import Callable
 
 import numpy as np
 
-from worker.kinematics.planar_serial import (
+from worker.families.planar_serial.kinematics import (
     exact_orientation_dexterity,
     limited_orientation_dexterity,
     orientation_samples,

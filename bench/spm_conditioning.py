@@ -25,7 +25,7 @@ from collections.abc import Callable
 
 import numpy as np
 
-from worker.kinematics.spherical_parallel import (
+from worker.families.spherical_parallel.kinematics import (
     SampleSet,
     SpmDesign,
     Workspace,

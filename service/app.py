@@ -50,7 +50,7 @@ from worker.store import open_store
 from worker.store.base import JobStore
 
 if TYPE_CHECKING:
-    from worker.dispatch.celery_dispatch import Sweeper
+    from worker.dispatch.celery.dispatch import Sweeper
 
 __all__ = ["create_app"]
 
@@ -76,7 +76,7 @@ def _start_sweeper(
 ) -> Sweeper | None:
     if not settings.broker_url:
         return None
-    from worker.dispatch.celery_dispatch import Sweeper
+    from worker.dispatch.celery.dispatch import Sweeper
 
     sweeper = Sweeper(settings, store, dispatcher)
     sweeper.start()

@@ -56,7 +56,7 @@ def run_worker(options: dict[str, Any], log_level: str = "info") -> int:
         sys.stderr.write("dexlab worker: --workers must be at least 1\n")
         return 2
     if settings.broker_url:
-        from worker.dispatch.celery_worker import run_celery_worker
+        from worker.dispatch.celery.worker import run_celery_worker
 
         run_celery_worker(settings, log_level.upper(), json_lines=log_format == "json")
         return 0

@@ -30,7 +30,7 @@ import httpx
 from starlette.concurrency import run_in_threadpool
 
 from service.ogc.execute_request import Presentation
-from service.ogc.job_documents import status_info
+from service.ogc.jobs.documents import status_info
 from service.ogc.outbound import OutboundPolicy
 from service.ogc.outputs import process_outputs
 from service.ogc.results import document_bytes, select_outputs

@@ -9,7 +9,7 @@ from fastapi import APIRouter, FastAPI
 
 from service.ogc.callbacks import CallbackSender
 from service.ogc.execution import outbound_policy
-from service.ogc.job_routes import router as job_router
+from service.ogc.jobs.routes import router as job_router
 from service.ogc.routes import router as process_router
 
 __all__ = ["ogc_router"]

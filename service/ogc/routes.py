@@ -22,7 +22,7 @@ from service.ogc.execution import (
     submit_execute,
 )
 from service.ogc.execution_mode import execution_mode, parse_prefer
-from service.ogc.job_documents import status_info
+from service.ogc.jobs.documents import status_info
 from service.ogc.process_documents import process_description, process_summary
 from service.ogc.schemas import (
     ARTIFACT_CONTENT,

@@ -2,7 +2,7 @@
 schemas, as dexlab fills them); and the problem statuses of each route.
 
 These describe what the handlers build (:mod:`service.ogc.process_documents`,
-:mod:`service.ogc.job_documents`, :mod:`service.ogc.results`); schemathesis checks the
+:mod:`service.ogc.jobs.documents`, :mod:`service.ogc.results`); schemathesis checks the
 answers against them.  Names carry an ``Ogc`` prefix: the native API has its own
 ``Link``, ``JobList`` and so on.
 """

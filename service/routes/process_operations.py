@@ -29,25 +29,25 @@ __all__ = [
 
 #: The paper each family reproduces, as example summaries name it.
 FAMILY_PAPERS: dict[str, str] = {
-    "planar3r": "Patel & Sobh 2012",
-    "planar2dof": "Huang et al. 2004",
-    "spm": "Bai 2010",
+    "planar_serial": "Patel & Sobh 2012",
+    "planar_parallel": "Huang et al. 2004",
+    "spherical_parallel": "Bai 2010",
     "chains": "the parallelism paper",
 }
 
-#: The job families, by their package under ``worker/jobs``: (tag, description).
+#: The job families, by their package under ``worker/families``: (tag, description).
 FAMILY_TAGS: dict[str, tuple[str, str]] = {
-    "planar3r": (
+    "planar_serial": (
         "Three-link planar serial arms",
         "Patel & Sobh: synthesis from task points or a trajectory, dexterity maps, "
         "joint limits.",
     ),
-    "planar2dof": (
+    "planar_parallel": (
         "2-DOF planar parallel robots",
         "Huang et al. 2004: conditioning and pressure-angle maps, the workspace bounded "
         "by a conditioning limit, the largest rectangle, η, the optimum.",
     ),
-    "spm": (
+    "spherical_parallel": (
         "Spherical parallel manipulators",
         "Bai 2010: kinematics, conditioning over an orientation workspace, the design "
         "space and the optimum design.",
@@ -60,9 +60,10 @@ FAMILY_TAGS: dict[str, tuple[str, str]] = {
 
 
 def family_of(definition: ProcessDefinition) -> str:
-    """The family package a process belongs to (``worker.jobs.<family>``)."""
+    """The family package a process belongs to (``worker.families.<family>``), read off
+    its ``run`` function's module (the service imports no family)."""
     parts = definition.run.__module__.split(".")
-    return parts[2] if len(parts) > 2 and parts[:2] == ["worker", "jobs"] else "other"
+    return parts[2] if len(parts) > 2 and parts[:2] == ["worker", "families"] else "other"
 
 
 def family_tag_documents(registry: ProcessRegistry) -> list[dict[str, Any]]:

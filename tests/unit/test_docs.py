@@ -180,7 +180,7 @@ def product_files() -> list[Path]:
 
 def test_no_product_file_sends_a_reader_outside_the_repository() -> None:
     files = product_files()
-    assert ROOT / "worker" / "jobs" / "planar3r" / "__init__.py" in files
+    assert ROOT / "worker" / "families" / "planar_serial" / "__init__.py" in files
     offending = [
         f"{path.relative_to(ROOT)}:{number}: {line.strip()}"
         for path in files

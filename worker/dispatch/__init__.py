@@ -41,6 +41,6 @@ def make_dispatcher(settings: WorkerSettings, store: JobStore) -> Dispatcher:
     """The dispatcher the settings call for."""
     if not settings.broker_url:
         return LocalDispatch()
-    from worker.dispatch.celery_dispatch import CeleryDispatch
+    from worker.dispatch.celery.dispatch import CeleryDispatch
 
     return CeleryDispatch(settings, store)

@@ -8,7 +8,7 @@ from datetime import UTC, datetime
 import jsonschema
 import pytest
 
-from service.ogc.job_documents import job_list, status_info
+from service.ogc.jobs.documents import job_list, status_info
 from service.ogc.process_documents import inline_refs, process_description, process_summary
 from service.ogc.schemas import OgcJobList, OgcProcess, OgcProcessSummary, OgcStatusInfo
 from service.ogc.urls import PublicUrls

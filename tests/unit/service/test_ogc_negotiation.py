@@ -16,7 +16,7 @@ from service.ogc.execute_request import (
     subscriber_of,
 )
 from service.ogc.execution_mode import Preferences, execution_mode, parse_prefer
-from service.ogc.job_query import listing_filter, page_query, parse_datetime_interval
+from service.ogc.jobs.query import listing_filter, page_query, parse_datetime_interval
 from service.ogc.outbound import OutboundPolicy
 from service.ogc.outputs import process_outputs
 from service.preferences import MAX_WAIT_S

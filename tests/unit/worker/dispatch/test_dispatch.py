@@ -6,7 +6,7 @@ import time
 from pathlib import Path
 
 from worker.dispatch import LocalDispatch, make_dispatcher
-from worker.dispatch.celery_dispatch import CeleryDispatch, Sweeper
+from worker.dispatch.celery.dispatch import CeleryDispatch, Sweeper
 from worker.settings import WorkerSettings
 from worker.store import open_store
 from worker.store.base import NewJob

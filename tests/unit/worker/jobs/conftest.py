@@ -42,7 +42,7 @@ def unrendered_artifacts(fig: Figure, stem: str, title: str) -> tuple[Artifact, 
 @pytest.fixture
 def fast_figures(monkeypatch: pytest.MonkeyPatch) -> None:
     """Skip PNG/SVG rendering in tests that check numbers, not plots."""
-    from worker.jobs.planar3r import dexterity_map, synthesis
+    from worker.families.planar_serial.jobs import dexterity_map, synthesis
 
     monkeypatch.setattr(dexterity_map, "figure_artifacts", unrendered_artifacts)
     monkeypatch.setattr(synthesis, "figure_artifacts", unrendered_artifacts)

@@ -9,9 +9,10 @@ import pytest
 
 from tests.unit.worker.jobs.conftest import RecordingContext, unrendered_artifacts
 from worker.contract import JobOutcome
-from worker.jobs.chains import FOURBAR_GRASHOF, fourbar
-from worker.jobs.chains.examples import FOURBAR_GRASHOF_EXAMPLES
-from worker.jobs.chains.fourbar_spec import FourBarGrashofSpec
+from worker.families.chains import FOURBAR_GRASHOF
+from worker.families.chains.examples import FOURBAR_GRASHOF_EXAMPLES
+from worker.families.chains.fourbar_spec import FourBarGrashofSpec
+from worker.families.chains.jobs import fourbar
 
 RESULT_KEYS = {
     "lengths", "ground", "grashof", "classification", "barker", "criterion", "links",

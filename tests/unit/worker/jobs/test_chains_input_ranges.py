@@ -20,8 +20,8 @@ from tests.unit.worker.jobs.test_planar2dof_input_ranges import (
     definition,
     property_settings,
 )
+from worker.common.numeric_ranges import MAX_LENGTH, MAX_LENGTH_RATIO, MIN_LENGTH
 from worker.errors import InvalidInputs
-from worker.jobs.numeric_ranges import MAX_LENGTH, MAX_LENGTH_RATIO, MIN_LENGTH
 from worker.submission import validate_inputs
 
 FOURBAR = definition("fourbar-grashof")

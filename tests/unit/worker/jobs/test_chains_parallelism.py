@@ -9,9 +9,10 @@ import pytest
 
 from tests.unit.worker.jobs.conftest import RecordingContext, unrendered_artifacts
 from worker.contract import JobOutcome
-from worker.jobs.chains import CHAIN_PARALLELISM, parallelism
-from worker.jobs.chains.examples import CHAIN_PARALLELISM_EXAMPLES, FIG_4A
-from worker.jobs.chains.specs import ChainParallelismSpec
+from worker.families.chains import CHAIN_PARALLELISM
+from worker.families.chains.examples import CHAIN_PARALLELISM_EXAMPLES, FIG_4A
+from worker.families.chains.jobs import parallelism
+from worker.families.chains.specs import ChainParallelismSpec
 
 CHAIN_KEYS = {
     "name", "form", "links", "joints", "independent_loops", "mobility", "dimensions",

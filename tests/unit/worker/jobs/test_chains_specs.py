@@ -11,17 +11,17 @@ import pytest
 from pydantic import ValidationError
 
 from worker.errors import InvalidInputs
-from worker.jobs.chains import CHAIN_PARALLELISM, FOURBAR_GRASHOF
-from worker.jobs.chains.costs import (
+from worker.families.chains import CHAIN_PARALLELISM, FOURBAR_GRASHOF
+from worker.families.chains.costs import (
     CHAIN_COST_LIMIT,
     CHAIN_SYNC_COST_LIMIT,
     arrangement_count,
     chain_parallelism_cost,
     fourbar_grashof_cost,
 )
-from worker.jobs.chains.examples import FIG_2, FIG_4A, FIG_4B
-from worker.jobs.chains.fourbar_spec import FourBarGrashofSpec
-from worker.jobs.chains.specs import (
+from worker.families.chains.examples import FIG_2, FIG_4A, FIG_4B
+from worker.families.chains.fourbar_spec import FourBarGrashofSpec
+from worker.families.chains.specs import (
     ChainParallelismSpec,
     LoopChain,
     MultiLoopChain,
@@ -312,9 +312,10 @@ def test_registered_in_the_default_registry() -> None:
 
 def test_import_does_no_heavy_work() -> None:
     code = (
-        "import sys, worker.jobs.chains; "
-        "print(sorted(m for m in ('matplotlib', 'scipy', 'worker.jobs.chains.parallelism', "
-        "'worker.jobs.chains.fourbar') if m in sys.modules))"
+        "import sys, worker.families.chains; "
+        "print(sorted(m for m in ('matplotlib', 'scipy', "
+        "'worker.families.chains.jobs.parallelism', "
+        "'worker.families.chains.jobs.fourbar') if m in sys.modules))"
     )
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
     assert out.stdout.strip() == "[]"

@@ -14,7 +14,7 @@ from typing import Any
 import pytest
 
 from worker.contract import JobStatus
-from worker.jobs.planar3r.examples import EXAMPLE_2_LABELS, EXAMPLE_2_TASK_POINTS
+from worker.families.planar_serial.examples import EXAMPLE_2_LABELS, EXAMPLE_2_TASK_POINTS
 from worker.processes import default_registry
 from worker.runner import WorkerLoop
 from worker.settings import WorkerSettings
@@ -181,7 +181,7 @@ def test_what_confirms_the_paper_is_a_note_not_an_erratum() -> None:
     holds = [n for n in chains.all_notes if "Fig 2e is more parallel than Fig 2d' holds" in n]
     assert holds and holds[0] in chains.notes and holds[0] not in chains.errata
     assert any("2d" in erratum or "Fig 2" in erratum for erratum in chains.errata)
-    from worker.jobs.spm.examples import DESIGN_SPACE_EXAMPLES
+    from worker.families.spherical_parallel.examples import DESIGN_SPACE_EXAMPLES
 
     example = next(ex for ex in DESIGN_SPACE_EXAMPLES if "60" in str(ex.inputs))
     space = run_directly("spm-design-space", {**example.inputs, "plots": False})

@@ -16,11 +16,12 @@ import pytest
 from tests.unit.worker.jobs.conftest import RecordingContext, unrendered_artifacts
 from tests.unit.worker.plotting.test_render import png_pixels, svg_strings
 from worker.contract import JobOutcome
-from worker.jobs.planar2dof import CONDITIONING_MAP, conditioning_map
-from worker.jobs.planar2dof.conditioning_map import run_conditioning_map
-from worker.jobs.planar2dof.examples import CONDITIONING_MAP_EXAMPLES
-from worker.jobs.planar2dof.specs import ConditioningMapSpec
-from worker.kinematics import planar_parallel as pp
+from worker.families.planar_parallel import CONDITIONING_MAP
+from worker.families.planar_parallel import kinematics as pp
+from worker.families.planar_parallel.examples import CONDITIONING_MAP_EXAMPLES
+from worker.families.planar_parallel.jobs import conditioning_map
+from worker.families.planar_parallel.jobs.conditioning_map import run_conditioning_map
+from worker.families.planar_parallel.specs import ConditioningMapSpec
 
 RESULT_KEYS = {
     "actuation", "l1", "l2", "e", "delta", "architecture", "working_mode", "length_unit",

@@ -1,7 +1,7 @@
 """Every accepted input computes: ``planar2dof-conditioning-map`` and ``planar2dof-optimisation``.
 
 Each process declares the numeric ranges it supports in its input schema (the shared
-convention of :mod:`worker.jobs.numeric_ranges`, narrowed where the method needs it).
+convention of :mod:`worker.common.numeric_ranges`, narrowed where the method needs it).
 Property tests draw raw requests across those ranges, their ends and just outside: a
 value outside must be refused at validation with an error naming its field; a request
 that validates must run as the worker runs it (the stored JSON validated again, plots
@@ -25,10 +25,10 @@ from hypothesis import HealthCheck, assume, event, example, given, settings
 from hypothesis import strategies as st
 
 from tests.unit.worker.jobs.conftest import RecordingContext
+from worker.common.numeric_ranges import MAX_COORDINATE, MAX_LENGTH, MIN_LENGTH, MIN_STEP
 from worker.errors import InvalidInputs
-from worker.jobs.numeric_ranges import MAX_COORDINATE, MAX_LENGTH, MIN_LENGTH, MIN_STEP
-from worker.jobs.planar2dof.optimisation_spec import eq17_reach
-from worker.kinematics import planar_parallel as pp
+from worker.families.planar_parallel import kinematics as pp
+from worker.families.planar_parallel.optimisation_spec import eq17_reach
 from worker.processes import ProcessDefinition, default_registry
 from worker.submission import validate_inputs
 

@@ -17,11 +17,12 @@ import pytest
 from tests.unit.worker.jobs.conftest import RecordingContext, unrendered_artifacts
 from tests.unit.worker.plotting.test_render import png_pixels, svg_strings
 from worker.contract import JobOutcome
-from worker.jobs.planar2dof import OPTIMISATION, optimisation_artifacts
-from worker.jobs.planar2dof.examples import OPTIMISATION_EXAMPLES
-from worker.jobs.planar2dof.optimisation import run_optimisation
-from worker.jobs.planar2dof.specs import OptimisationSpec
-from worker.kinematics import planar_parallel as pp
+from worker.families.planar_parallel import OPTIMISATION
+from worker.families.planar_parallel import kinematics as pp
+from worker.families.planar_parallel.examples import OPTIMISATION_EXAMPLES
+from worker.families.planar_parallel.jobs import optimisation_artifacts
+from worker.families.planar_parallel.jobs.optimisation import run_optimisation
+from worker.families.planar_parallel.specs import OptimisationSpec
 
 RESULT_KEYS = {
     "allowable_pressure_angle_deg", "inverse_condition_limit", "inverse_condition_limit_source",

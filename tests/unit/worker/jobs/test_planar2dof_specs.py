@@ -13,15 +13,19 @@ import pytest
 from pydantic import ValidationError
 
 from worker.errors import CostLimitExceeded, InvalidInputs
-from worker.jobs.planar2dof import CONDITIONING_MAP, OPTIMISATION
-from worker.jobs.planar2dof.costs import (
+from worker.families.planar_parallel import CONDITIONING_MAP, OPTIMISATION
+from worker.families.planar_parallel.costs import (
     CONDITIONING_MAP_COST_LIMIT,
     OPTIMISATION_COST_LIMIT,
     RECTANGLE_SEARCH_COST,
     conditioning_map_cost,
     optimisation_cost,
 )
-from worker.jobs.planar2dof.specs import ConditioningMapSpec, OptimisationSpec, sweep_deltas
+from worker.families.planar_parallel.specs import (
+    ConditioningMapSpec,
+    OptimisationSpec,
+    sweep_deltas,
+)
 from worker.processes import default_registry
 from worker.settings import WorkerSettings
 from worker.store import open_store
@@ -320,9 +324,11 @@ def test_public_field_names() -> None:
 
 def test_import_does_no_heavy_work() -> None:
     code = (
-        "import sys, worker.jobs.planar2dof; "
-        "print(sorted(m for m in ('matplotlib', 'scipy', 'worker.kinematics.planar_parallel', "
-        "'worker.jobs.planar2dof.conditioning_map', 'worker.jobs.planar2dof.optimisation') "
+        "import sys, worker.families.planar_parallel; "
+        "print(sorted(m for m in ('matplotlib', 'scipy', "
+        "'worker.families.planar_parallel.kinematics', "
+        "'worker.families.planar_parallel.jobs.conditioning_map', "
+        "'worker.families.planar_parallel.jobs.optimisation') "
         "if m in sys.modules))"
     )
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)

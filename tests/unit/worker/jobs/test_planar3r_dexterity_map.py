@@ -13,12 +13,16 @@ import pytest
 
 from tests.unit.worker.jobs.conftest import RecordingContext
 from worker.contract import JobOutcome
-from worker.jobs.planar3r import DEXTERITY_MAP
-from worker.jobs.planar3r.dexterity_map import run_dexterity_map
-from worker.jobs.planar3r.examples import DEXTERITY_MAP_EXAMPLES, PAPER_JOINT_LIMITS_DEG
-from worker.jobs.planar3r.specs import DexterityMapSpec, PolylineTrajectory, PolynomialTrajectory
-from worker.jobs.planar3r.trajectories import trajectory_path, trajectory_samples
-from worker.kinematics import planar_serial
+from worker.families.planar_serial import DEXTERITY_MAP
+from worker.families.planar_serial import kinematics as planar_serial
+from worker.families.planar_serial.examples import DEXTERITY_MAP_EXAMPLES, PAPER_JOINT_LIMITS_DEG
+from worker.families.planar_serial.jobs.dexterity_map import run_dexterity_map
+from worker.families.planar_serial.jobs.trajectories import trajectory_path, trajectory_samples
+from worker.families.planar_serial.specs import (
+    DexterityMapSpec,
+    PolylineTrajectory,
+    PolynomialTrajectory,
+)
 
 RESULT_KEYS = {
     "links", "joint_limits_deg", "length_unit", "method", "discretisation", "regions",
@@ -383,8 +387,8 @@ def test_polynomial_samples_are_even_in_x() -> None:
 
 
 def test_plots_false_gives_data_files_only(ctx: RecordingContext) -> None:
-    from worker.jobs.planar3r.specs import SynthesisSpec
-    from worker.jobs.planar3r.synthesis import run_synthesis
+    from worker.families.planar_serial.jobs.synthesis import run_synthesis
+    from worker.families.planar_serial.specs import SynthesisSpec
 
     spec = DexterityMapSpec.model_validate(
         {"links": [15, 14, 8], "grid": {"points_per_axis": 11}, "plots": False}

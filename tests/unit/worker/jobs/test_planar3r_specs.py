@@ -10,10 +10,10 @@ from typing import Any
 import pytest
 from pydantic import ValidationError
 
-from worker.jobs.planar3r import DEXTERITY_MAP, SYNTHESIS
-from worker.jobs.planar3r.costs import COST_LIMIT, dexterity_map_cost, synthesis_cost
-from worker.jobs.planar3r.examples import PAPER_JOINT_LIMITS_DEG
-from worker.jobs.planar3r.specs import (
+from worker.families.planar_serial import DEXTERITY_MAP, SYNTHESIS
+from worker.families.planar_serial.costs import COST_LIMIT, dexterity_map_cost, synthesis_cost
+from worker.families.planar_serial.examples import PAPER_JOINT_LIMITS_DEG
+from worker.families.planar_serial.specs import (
     DexterityMapSpec,
     PolylineTrajectory,
     PolynomialTrajectory,
@@ -253,9 +253,10 @@ def test_field_descriptions_are_published() -> None:
 
 def test_import_does_no_heavy_work() -> None:
     code = (
-        "import sys, worker.jobs.planar3r; "
-        "print(sorted(m for m in ('matplotlib', 'scipy', 'worker.jobs.planar3r.dexterity_map', "
-        "'worker.jobs.planar3r.synthesis') if m in sys.modules))"
+        "import sys, worker.families.planar_serial; "
+        "print(sorted(m for m in ('matplotlib', 'scipy', "
+        "'worker.families.planar_serial.jobs.dexterity_map', "
+        "'worker.families.planar_serial.jobs.synthesis') if m in sys.modules))"
     )
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
     assert out.stdout.strip() == "[]"

@@ -12,10 +12,10 @@ import pytest
 
 from tests.unit.worker.jobs.conftest import RecordingContext
 from worker.contract import JobOutcome
-from worker.jobs.planar3r import SYNTHESIS
-from worker.jobs.planar3r.examples import SYNTHESIS_EXAMPLES
-from worker.jobs.planar3r.specs import SynthesisSpec
-from worker.jobs.planar3r.synthesis import run_synthesis
+from worker.families.planar_serial import SYNTHESIS
+from worker.families.planar_serial.examples import SYNTHESIS_EXAMPLES
+from worker.families.planar_serial.jobs.synthesis import run_synthesis
+from worker.families.planar_serial.specs import SynthesisSpec
 
 RESULT_KEYS = {
     "distance_source", "d_min", "d_max", "d_min_at", "d_max_at", "round_distances",

@@ -5,7 +5,7 @@ from typing import Annotated
 import pytest
 from pydantic import ValidationError
 
-from worker.jobs.spec_base import FrozenSpec, GridSpecBase, entries
+from worker.common.specs import FrozenSpec, GridSpecBase, entries
 
 
 class Pair(FrozenSpec):

@@ -13,12 +13,13 @@ import numpy as np
 import pytest
 
 from tests.unit.worker.jobs.conftest import RecordingContext, unrendered_artifacts
+from worker.common.figures import figure_artifacts
 from worker.contract import JobOutcome
-from worker.jobs.spm import CONDITIONING_MAP, conditioning_artifacts
-from worker.jobs.spm.examples import CONDITIONING_MAP_EXAMPLES, TABLE_2_GRAPHIC
-from worker.jobs.spm.specs import ConditioningMapSpec
-from worker.kinematics import spherical_parallel as sp
-from worker.plotting.render import figure_artifacts
+from worker.families.spherical_parallel import CONDITIONING_MAP
+from worker.families.spherical_parallel import kinematics as sp
+from worker.families.spherical_parallel.examples import CONDITIONING_MAP_EXAMPLES, TABLE_2_GRAPHIC
+from worker.families.spherical_parallel.jobs import conditioning_artifacts
+from worker.families.spherical_parallel.specs import ConditioningMapSpec
 
 RESULT_KEYS = {
     "design", "branch", "workspace", "sampling", "indices", "workspace_minimum",

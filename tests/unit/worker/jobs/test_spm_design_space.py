@@ -12,12 +12,17 @@ import numpy as np
 import pytest
 
 from tests.unit.worker.jobs.conftest import RecordingContext, unrendered_artifacts
+from worker.common.figures import figure_artifacts
 from worker.contract import JobOutcome
-from worker.jobs.spm import DESIGN_SPACE, design_space
-from worker.jobs.spm.examples import DESIGN_SPACE_EXAMPLES, FIG_5_F_MAX, FIG_5_F_MIN
-from worker.jobs.spm.specs import DesignSpaceSpec
-from worker.kinematics import spherical_parallel as sp
-from worker.plotting.render import figure_artifacts
+from worker.families.spherical_parallel import DESIGN_SPACE
+from worker.families.spherical_parallel import kinematics as sp
+from worker.families.spherical_parallel.examples import (
+    DESIGN_SPACE_EXAMPLES,
+    FIG_5_F_MAX,
+    FIG_5_F_MIN,
+)
+from worker.families.spherical_parallel.jobs import design_space
+from worker.families.spherical_parallel.specs import DesignSpaceSpec
 
 RESULT_KEYS = {"workspace", "identical_platforms", "gamma_deg", "method", "designs", "summary",
                "index_map", "sampling", "data"}  # fmt: skip

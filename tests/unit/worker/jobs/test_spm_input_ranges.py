@@ -27,9 +27,9 @@ from tests.unit.worker.jobs.test_planar2dof_input_ranges import (
     run_like_the_worker,
     validated,
 )
+from worker.common.numeric_ranges import MIN_STEP
 from worker.errors import InvalidInputs
-from worker.jobs.numeric_ranges import MIN_STEP
-from worker.jobs.spm.workspace_spec import narrower_than
+from worker.families.spherical_parallel.workspace_spec import narrower_than
 from worker.submission import validate_inputs
 
 MAP = definition("spm-conditioning-map")

@@ -12,12 +12,13 @@ import numpy as np
 import pytest
 
 from tests.unit.worker.jobs.conftest import RecordingContext, unrendered_artifacts
+from worker.common.figures import figure_artifacts
 from worker.contract import JobOutcome
-from worker.jobs.spm import OPTIMISATION, optimisation_artifacts
-from worker.jobs.spm.examples import EXAMPLE_3_WORKSPACE, OPTIMISATION_EXAMPLES
-from worker.jobs.spm.optimisation_spec import OptimisationSpec
-from worker.kinematics import spherical_parallel as sp
-from worker.plotting.render import figure_artifacts
+from worker.families.spherical_parallel import OPTIMISATION
+from worker.families.spherical_parallel import kinematics as sp
+from worker.families.spherical_parallel.examples import EXAMPLE_3_WORKSPACE, OPTIMISATION_EXAMPLES
+from worker.families.spherical_parallel.jobs import optimisation_artifacts
+from worker.families.spherical_parallel.optimisation_spec import OptimisationSpec
 
 RESULT_KEYS = {
     "success", "message", "optimum", "starts", "evaluations", "screening", "budget", "free",

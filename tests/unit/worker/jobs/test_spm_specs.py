@@ -10,8 +10,8 @@ from typing import Any
 import pytest
 from pydantic import ValidationError
 
-from worker.jobs.spm import CONDITIONING_MAP, DESIGN_SPACE, OPTIMISATION
-from worker.jobs.spm.costs import (
+from worker.families.spherical_parallel import CONDITIONING_MAP, DESIGN_SPACE, OPTIMISATION
+from worker.families.spherical_parallel.costs import (
     CONDITIONING_MAP_COST_LIMIT,
     CONDITIONING_MAP_SYNC_COST_LIMIT,
     DESIGN_OVERHEAD,
@@ -22,8 +22,8 @@ from worker.jobs.spm.costs import (
     design_space_cost,
     optimisation_cost,
 )
-from worker.jobs.spm.optimisation_spec import SCREEN_PER_START, OptimisationSpec
-from worker.jobs.spm.specs import BetaRange, ConditioningMapSpec, DesignSpaceSpec
+from worker.families.spherical_parallel.optimisation_spec import SCREEN_PER_START, OptimisationSpec
+from worker.families.spherical_parallel.specs import BetaRange, ConditioningMapSpec, DesignSpaceSpec
 from worker.processes import default_registry
 
 CONE_120 = {"tilt_max_deg": 60}
@@ -325,9 +325,11 @@ def test_public_field_names() -> None:
 
 def test_import_does_no_heavy_work() -> None:
     code = (
-        "import sys, worker.jobs.spm; "
-        "print(sorted(m for m in ('matplotlib', 'scipy', 'worker.kinematics.spherical_parallel', "
-        "'worker.jobs.spm.conditioning_map', 'worker.jobs.spm.optimisation') "
+        "import sys, worker.families.spherical_parallel; "
+        "print(sorted(m for m in ('matplotlib', 'scipy', "
+        "'worker.families.spherical_parallel.kinematics', "
+        "'worker.families.spherical_parallel.jobs.conditioning_map', "
+        "'worker.families.spherical_parallel.jobs.optimisation') "
         "if m in sys.modules))"
     )
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)

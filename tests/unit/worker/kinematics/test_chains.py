@@ -14,7 +14,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from worker.kinematics import chains as c
+from worker.families.chains.kinematics import parallelism as c
 
 TERNARY_1 = {"a": 6.0, "b": 7.0, "c": 9.0}
 TERNARY_4 = {"a": 6.0, "b": 8.0, "c": 9.0}

@@ -10,15 +10,15 @@ import pytest
 from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 
-from worker.kinematics.fourbar import (
+from worker.common.grashof import end_effector_fully_rotatable
+from worker.families.chains.kinematics.fourbar import (
     BARKER_CLASSES,
     ROLES,
     classify_four_bar,
     four_bar_poses,
     full_turn_pairs,
 )
-from worker.kinematics.fourbar_simulation import drive_closes, simulated_full_turns
-from worker.kinematics.grashof import end_effector_fully_rotatable
+from worker.families.chains.kinematics.fourbar_simulation import drive_closes, simulated_full_turns
 
 
 def placed(values: dict[str, float], at: dict[str, int]) -> list[float]:

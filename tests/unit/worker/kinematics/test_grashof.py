@@ -9,8 +9,8 @@ import pytest
 from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 
-from worker.kinematics.grashof import FourBarCheck, end_effector_fully_rotatable, four_bar_check
-from worker.kinematics.planar_serial import exact_orientation_dexterity
+from worker.common.grashof import FourBarCheck, end_effector_fully_rotatable, four_bar_check
+from worker.families.planar_serial.kinematics import exact_orientation_dexterity
 
 EX1_LINKS = (15.0, 14.0, 8.0)
 

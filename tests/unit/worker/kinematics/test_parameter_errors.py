@@ -2,7 +2,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from worker.kinematics.parameter_errors import bad_parameter
+from worker.common.parameter_errors import bad_parameter
 
 
 def test_names_parameter_function_requirement_and_value() -> None:

@@ -11,7 +11,7 @@ import pytest
 from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 
-from worker.kinematics.planar_parallel import (
+from worker.families.planar_parallel.kinematics import (
     Architecture,
     condition_limit_from_pressure_angle,
     conditioning_map,
@@ -26,7 +26,7 @@ from worker.kinematics.planar_parallel import (
     sampled_inverse_condition,
     workspace_area,
 )
-from worker.kinematics.planar_parallel_model import chain_terms
+from worker.families.planar_parallel.kinematics.model import chain_terms
 
 ACTUATIONS = ("proximal-arm", "telescopic-leg", "linear-drive")
 MODES = ((1, -1), (1, 1), (-1, 1), (-1, -1))

@@ -13,7 +13,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from worker.kinematics.planar_parallel import (
+from worker.families.planar_parallel.kinematics import (
     Architecture,
     DesignSweep,
     Rectangle,

@@ -10,7 +10,7 @@ import pytest
 from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 
-from worker.kinematics.planar_serial import (
+from worker.families.planar_serial.kinematics import (
     band_area,
     exact_orientation_dexterity,
     forward_kinematics,
@@ -23,7 +23,10 @@ from worker.kinematics.planar_serial import (
     sampled_orientation_dexterity,
     synthesise_links,
 )
-from worker.kinematics.trajectory import points_distance_range, polynomial_distance_range
+from worker.families.planar_serial.kinematics.trajectory import (
+    points_distance_range,
+    polynomial_distance_range,
+)
 
 EX1_CUBIC = [-0.2292, 7.625, -78.83, 252.0]  # eq (12)
 EX1_LINKS = (15.0, 14.0, 8.0)

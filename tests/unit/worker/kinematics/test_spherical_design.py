@@ -9,8 +9,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from worker.kinematics.spherical_axis_reach import platform_axis
-from worker.kinematics.spherical_parallel import (
+from worker.families.spherical_parallel.kinematics import (
     EDGE_TOLERANCE,
     SpmDesign,
     Workspace,
@@ -20,6 +19,7 @@ from worker.kinematics.spherical_parallel import (
     is_feasible,
     link_angles,
 )
+from worker.families.spherical_parallel.kinematics.axis_reach import platform_axis
 
 DEG = math.radians
 CONE_120 = Workspace(DEG(60.0))

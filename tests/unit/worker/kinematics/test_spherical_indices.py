@@ -11,8 +11,7 @@ import pytest
 from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 
-from worker.kinematics.spherical_kinematics import leg_frames
-from worker.kinematics.spherical_parallel import (
+from worker.families.spherical_parallel.kinematics import (
     SpmDesign,
     Workspace,
     orientation_samples,
@@ -21,6 +20,7 @@ from worker.kinematics.spherical_parallel import (
     workspace_indices,
     workspace_minimum,
 )
+from worker.families.spherical_parallel.kinematics.legs import leg_frames
 
 FAST = settings(max_examples=60, deadline=None)
 DEG = math.radians

@@ -13,8 +13,7 @@ from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 from scipy.spatial.transform import Rotation
 
-from worker.kinematics.spherical_kinematics import leg_frames, solve_legs
-from worker.kinematics.spherical_parallel import (
+from worker.families.spherical_parallel.kinematics import (
     SpmDesign,
     condition_number,
     inverse_condition_number,
@@ -23,6 +22,7 @@ from worker.kinematics.spherical_parallel import (
     rotation,
     unit_vectors,
 )
+from worker.families.spherical_parallel.kinematics.legs import leg_frames, solve_legs
 
 FAST = settings(max_examples=80, deadline=None)
 angle = st.floats(0.15, math.pi - 0.15)

@@ -9,7 +9,7 @@ import math
 import numpy as np
 import pytest
 
-from worker.kinematics.spherical_parallel import (
+from worker.families.spherical_parallel.kinematics import (
     OptimisationResult,
     SpmDesign,
     Workspace,

@@ -7,7 +7,7 @@ import math
 import numpy as np
 import pytest
 
-from worker.kinematics.spherical_parallel import (
+from worker.families.spherical_parallel.kinematics import (
     DEFAULT_COUNTS,
     Workspace,
     boundary_grid,

@@ -9,7 +9,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from worker.kinematics.trajectory import (
+from worker.families.planar_serial.kinematics.trajectory import (
     DistanceRange,
     points_distance_range,
     polyline_distance_range,

@@ -9,10 +9,10 @@ import pytest
 from matplotlib.figure import Figure
 
 from tests.unit.worker.plotting.test_render import png_pixels, svg_strings
-from worker.kinematics import chains as c
-from worker.kinematics.fourbar import classify_four_bar, four_bar_poses
-from worker.plotting import chains as p
-from worker.plotting.render import figure_artifacts
+from worker.common.figures import figure_artifacts
+from worker.families.chains.kinematics import parallelism as c
+from worker.families.chains.kinematics.fourbar import classify_four_bar, four_bar_poses
+from worker.families.chains.plots import figures as p
 
 FIG_4B = p.ChainGraph(
     name="Fig 4b",

@@ -15,10 +15,10 @@ from matplotlib.figure import Figure
 from matplotlib.patches import Rectangle
 
 from tests.unit.worker.plotting.test_render import ROOT, png_pixels, svg_strings
-from worker.plotting import planar2dof as p
-from worker.plotting import planar2dof_design as d
-from worker.plotting.planar2dof_panels import INVERSE_CONDITION, MAX_DRAWN_NODES
-from worker.plotting.render import RASTER_DPI, figure_artifacts
+from worker.common.figures import RASTER_DPI, figure_artifacts
+from worker.families.planar_parallel.plots import conditioning as p
+from worker.families.planar_parallel.plots import design as d
+from worker.families.planar_parallel.plots.panels import INVERSE_CONDITION, MAX_DRAWN_NODES
 
 POINTS = np.array([[0.0, -1.5], [1.0, -1.0]])
 JOINTS = [[0.5, 0.0], [-0.5, 0.0]]
@@ -323,7 +323,7 @@ def test_rendering_never_loads_pyplot_nor_changes_rc_params() -> None:
 import sys
 from tests.unit.worker.plotting import test_planar2dof as t
 from tests.unit.worker.plotting.test_render import rc_snapshot
-from worker.plotting.render import figure_artifacts
+from worker.common.figures import figure_artifacts
 before = rc_snapshot()
 for fig in (t.ic_map(), t.beta_map(), t.fig7(), t.fig8(), t.fig9(), t.workspace()):
     figure_artifacts(fig, "f", "t")

@@ -16,8 +16,8 @@ from matplotlib.figure import Figure
 from matplotlib.text import Annotation, Text
 
 from tests.unit.worker.plotting.test_render import ROOT, png_pixels, svg_strings
-from worker.plotting import planar3r as p
-from worker.plotting.render import RASTER_DPI, figure_artifacts
+from worker.common.figures import RASTER_DPI, figure_artifacts
+from worker.families.planar_serial.plots import figures as p
 
 # A made-up arm: links (8, 6, 4) give regions at d = 4, 10, 18 and full dexterity on
 # [0, 2] and [6, 10] (docs/methods/planar-serial.md).  d_z is a simple radial formula, NaN beyond
@@ -333,7 +333,7 @@ def test_rendering_never_loads_pyplot_nor_changes_rc_params() -> None:
 import sys
 from tests.unit.worker.plotting import test_planar3r as t
 from tests.unit.worker.plotting.test_render import rc_snapshot
-from worker.plotting.render import figure_artifacts
+from worker.common.figures import figure_artifacts
 before = rc_snapshot()
 x, y, d_z = t.synthetic_map()
 figures = [t.heatmap(), t.section(), t.cases(),

@@ -13,7 +13,7 @@ import pytest
 from matplotlib.figure import Figure
 from matplotlib.image import imread
 
-from worker.plotting.render import RASTER_DPI, figure_artifacts
+from worker.common.figures import RASTER_DPI, figure_artifacts
 
 ROOT = Path(__file__).resolve().parents[4]
 PNG_SIGNATURE = b"\x89PNG\r\n\x1a\n"

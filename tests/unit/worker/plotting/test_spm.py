@@ -10,11 +10,11 @@ import pytest
 from matplotlib.figure import Figure
 
 from tests.unit.worker.plotting.test_render import png_pixels, svg_strings
-from worker.plotting import spm as p
-from worker.plotting import spm_design as d
-from worker.plotting import spm_starts as st
-from worker.plotting.render import figure_artifacts
-from worker.plotting.spm_panels import disk_image
+from worker.common.figures import figure_artifacts
+from worker.families.spherical_parallel.plots import conditioning as p
+from worker.families.spherical_parallel.plots import design_space as d
+from worker.families.spherical_parallel.plots import starts as st
+from worker.families.spherical_parallel.plots.cone_panel import disk_image
 
 AZIMUTH = np.linspace(0.0, 360.0, 37)
 TILT = np.linspace(0.0, 45.0, 10)

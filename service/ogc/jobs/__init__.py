@@ -1,0 +1,2 @@
+"""The OGC job resources: documents (:mod:`.documents`), the job-list parameters
+(:mod:`.query`) and the handlers (:mod:`.routes`)."""

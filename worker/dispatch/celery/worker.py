@@ -1,0 +1,159 @@
+"""The worker side of Celery: running a delivered job, and ``dexlab worker``'s main.
+
+**A delivery means "claim the next job in fair order".**  Each submitted job sends one
+message (its ID as the task ID), but the process that receives it claims whatever job
+the store's fair order names (:mod:`worker.store.scheduling`: the owner whose last
+claim is oldest, then its oldest job; pool process 0 takes a cheap job first).  The
+broker's queue is first-in first-out, so a message that meant "run this job" would
+make another owner's job, or a small one, wait behind every message sent before it;
+the store sees every queued job and decides fairly, the same way for the local pool
+and for Celery.  Messages stay one per job, so there is always a message for each
+queued job: a claim uses one message and one job, and a message that finds nothing
+to claim is dropped.
+
+When nothing is claimable, the delivered job itself decides: held by another
+attempt's live lease (its process may have just died), the task is retried once the
+lease can have expired; waiting behind its owner's running cap, it is retried shortly;
+finished or dismissed, the delivery is dropped.  Each pool process builds its own
+store connection the first time it runs a task (after the fork).  The worker runs at
+a lower scheduling priority than the API (``DEXLAB_WORKER_NICE``, inherited by the
+pool processes), and its main process runs the sweepers.
+
+Logging stays as ``dexlab worker`` configured it (:mod:`worker.logs`): Celery is told
+that logging is set up, so its lines, its task lines (which carry the task ID, the job
+ID) and the prefork children's lines all share the one format.
+"""
+
+from __future__ import annotations
+
+import logging
+import os
+import socket
+from dataclasses import dataclass
+from typing import Any
+
+from celery import Celery, signals
+from celery.utils.log import current_process_index
+
+from worker.contract import JobStatus
+from worker.dispatch.celery.app import create_celery_app
+from worker.dispatch.celery.dispatch import CeleryDispatch, Sweeper
+from worker.logs import log_context, stdout_as_log_lines
+from worker.processes import default_registry
+from worker.retention import RetentionSweeper
+from worker.runner import WorkerLoop, lower_priority, worker_id_for
+from worker.settings import WorkerSettings
+from worker.store import open_store
+
+__all__ = ["run_celery_worker", "run_delivered_job"]
+
+log = logging.getLogger("dexlab.celery")
+
+
+@dataclass(frozen=True)
+class _ProcessRuntime:
+    pid: int
+    loop: WorkerLoop
+
+
+def _loop_for_this_process(app: Celery) -> WorkerLoop:
+    runtime: _ProcessRuntime | None = getattr(app, "dexlab_runtime", None)
+    if runtime is None or runtime.pid != os.getpid():
+        settings: WorkerSettings = app.dexlab_settings
+        store = open_store(settings.resolved_store_url(), retry_s=settings.store_retry_seconds)
+        # The pool's first process prefers cheap jobs (its index is kept when replaced).
+        cheap = current_process_index(base=0) == 0
+        loop = WorkerLoop(settings, store, default_registry(), prefer_cheap=cheap)
+        runtime = _ProcessRuntime(os.getpid(), loop)
+        app.dexlab_runtime = runtime
+    return runtime.loop
+
+
+def run_delivered_job(app: Celery, job_id: str) -> float | None:
+    """Run the delivered job if it can be claimed; seconds to retry after, or None."""
+    with log_context(job_id=job_id):
+        return _run_delivered_job(app, job_id)
+
+
+def _run_delivered_job(app: Celery, job_id: str) -> float | None:
+    loop = _loop_for_this_process(app)
+    claim = loop.claim()  # the next job in fair order, whichever message brought us here
+    if claim is not None:
+        # Its lines carry the job it runs (the delivery's task ID is on Celery's lines).
+        with log_context(job_id=claim.job.job_id):
+            if claim.job.job_id != job_id:
+                log.info("job %s runs on another job's delivery (fair order)", claim.job.job_id)
+            loop.execute(claim)
+        return None
+    attempt = loop.store.claim_job(
+        job_id,
+        loop.worker_id,
+        loop.settings.lease_seconds,
+        max_running_per_owner=loop.settings.max_running_per_key,
+    )
+    if attempt.claim is not None:
+        loop.execute(attempt.claim)
+        return None
+    if attempt.status is JobStatus.RUNNING and attempt.retry_after_s is not None:
+        log.info(
+            "job %s is held by a live lease; retrying in %.1f s", job_id, attempt.retry_after_s
+        )
+        return attempt.retry_after_s + 0.5
+    if attempt.status is JobStatus.ACCEPTED and attempt.retry_after_s is not None:
+        log.info("job %s waits for its owner's running cap", job_id)
+        return attempt.retry_after_s
+    log.info(
+        "dropping a delivery of job %s (%s)",
+        job_id,
+        attempt.status.value if attempt.status else "unknown job",
+    )
+    return None
+
+
+def _logging_is_set_up(**_: Any) -> None:
+    """Celery's ``setup_logging`` signal: with a receiver, Celery leaves logging alone."""
+
+
+def run_celery_worker(
+    settings: WorkerSettings, log_level: str = "INFO", json_lines: bool = False
+) -> None:
+    """``dexlab worker`` with a broker: a Celery worker with ``settings.workers``
+    prefork processes, plus a sweeper thread in the main process.  Logging must be
+    configured already; with ``json_lines`` Celery's start-up banner is dropped and
+    what it prints (its shutdown notices) becomes log lines, so that every line of
+    the output is JSON."""
+    signals.setup_logging.connect(_logging_is_set_up, weak=False, dispatch_uid="dexlab")
+    if json_lines:
+        stdout_as_log_lines("celery.stdout")
+    # Before the pool forks: its processes inherit the lower priority.
+    lower_priority(settings.worker_nice, f"Celery worker {os.getpid()} and its processes")
+    store = open_store(settings.resolved_store_url(), retry_s=settings.store_retry_seconds)
+    app = create_celery_app(settings)
+    dispatcher = CeleryDispatch(settings, store)
+    worker_id = worker_id_for(os.getpid())
+    store.register_worker(worker_id, socket.gethostname(), os.getpid())
+    sweeper = Sweeper(settings, store, dispatcher, worker_id=worker_id)
+    sweeper.start()
+    retention = RetentionSweeper(settings, store)
+    retention.start()
+    argv: list[Any] = [
+        *(["--quiet"] if json_lines else []),
+        "worker",
+        f"--concurrency={settings.workers}",
+        "--pool=prefork",
+        f"--loglevel={log_level}",
+        f"--queues={settings.queue}",
+        "--prefetch-multiplier=1",
+        "-O",
+        "fair",
+        "--without-gossip",
+        "--without-mingle",
+        f"--hostname=dexlab-{os.getpid()}@{socket.gethostname()}",
+    ]
+    try:
+        app.worker_main(argv=argv)
+    finally:
+        sweeper.stop()
+        retention.stop()
+        store.unregister_worker(worker_id)
+        dispatcher.close()

@@ -1,0 +1,79 @@
+"""The robot a conditioning-map request describes, and the grid that shows its workspace.
+
+:func:`architecture_from_spec` turns the validated inputs into a kinematic
+:class:`~worker.families.planar_parallel.kinematics.Architecture` (e by eq 12 for
+``"architecture": "isotropic"``); :func:`map_grid` gives the requested grid or one that
+holds the whole reachable workspace of the type (docs/methods/planar-parallel.md, Fig. 1).
+"""
+
+from __future__ import annotations
+
+import math
+
+from worker.common.grids import WorkspaceGrid
+from worker.families.planar_parallel import kinematics as pp
+from worker.families.planar_parallel.specs import ConditioningMapSpec, GridSpec
+
+__all__ = ["DEFAULT_GRID_MARGIN", "architecture_from_spec", "default_bounds", "map_grid"]
+
+#: The default grid reaches this fraction beyond the workspace on every side.
+DEFAULT_GRID_MARGIN = 0.03
+#: Telescopic legs reach everywhere: the default grid spans this many times e.
+TELESCOPIC_SPAN = 3.0
+#: Linear drives reach a band |y| <= l2 unbounded in x: the default grid spans |x| <= 2 l2.
+LINEAR_DRIVE_X_SPAN = 2.0
+
+
+def architecture_from_spec(spec: ConditioningMapSpec) -> pp.Architecture:
+    """The Architecture of the request; unused lengths are filled with l1 (never read)."""
+    if spec.architecture == "isotropic":
+        return pp.isotropic_architecture(_l2(spec), spec.l1)
+    return pp.Architecture(spec.actuation, spec.l1, _l2(spec), spec.e or 0.0)
+
+
+def _l2(spec: ConditioningMapSpec) -> float:
+    return spec.l2 if spec.l2 is not None else spec.l1
+
+
+def default_bounds(arch: pp.Architecture) -> tuple[float, float, float, float]:
+    """[x_min, x_max, y_min, y_max] around the type's reachable workspace, 3 % margin.
+
+    Proximal arm: |x| <= l1 + l2 - e, |y| <= l1 + l2 (both chains reach); telescopic
+    leg: the square |x|, |y| <= 3e (l1 if e = 0); linear drive: |x| <= 2 l2, |y| <= l2.
+    """
+    if arch.actuation == "proximal-arm":
+        reach = arch.l1 + arch.l2
+        half_x, half_y = max(reach - arch.e, 0.05 * reach), reach
+    elif arch.actuation == "telescopic-leg":
+        half_x = half_y = TELESCOPIC_SPAN * arch.e if arch.e > 0 else arch.l1
+    else:
+        half_x, half_y = LINEAR_DRIVE_X_SPAN * arch.l2, arch.l2
+    grow = 1.0 + DEFAULT_GRID_MARGIN
+    return -grow * half_x, grow * half_x, -grow * half_y, grow * half_y
+
+
+def map_grid(spec: GridSpec, arch: pp.Architecture) -> WorkspaceGrid:
+    """The requested grid, or :func:`default_bounds` with the requested node count."""
+    x0, x1, y0, y1 = spec.bounds if spec.bounds is not None else default_bounds(arch)
+    return WorkspaceGrid((float(x0), float(x1), float(y0), float(y1)), spec.points_per_axis)
+
+
+def describe_architecture(spec: ConditioningMapSpec, arch: pp.Architecture) -> str:
+    """A one-line description for plot subtitles, e.g. 'proximal-arm, l1 = 1, ...'."""
+    parts: list[str] = [spec.actuation]
+    if spec.actuation != "telescopic-leg":
+        if spec.actuation == "proximal-arm":
+            parts.append(f"l1 = {arch.l1:.4g}")
+        parts.append(f"l2 = {arch.l2:.4g}")
+    if spec.actuation != "linear-drive":
+        parts.append(f"e = {arch.e:.4g}" + (" (eq 12)" if spec.architecture else ""))
+    if spec.actuation == "proximal-arm":
+        parts.append(f"delta = {arch.l2 / arch.l1:.4g}")
+    m1, m2 = spec.working_mode
+    parts.append(f"working mode [{m1:+d}, {m2:+d}]")
+    return ", ".join(parts)
+
+
+def isotropic_depth(arch: pp.Architecture) -> float:
+    """H = (√2/2)(l1 + l2), the depth of eq (12)'s isotropic point (0, -H)."""
+    return math.sqrt(0.5) * (arch.l1 + arch.l2)

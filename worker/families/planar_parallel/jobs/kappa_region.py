@@ -1,0 +1,102 @@
+"""W_kappa0 = {points of the working mode with 1/kappa >= 1/kappa0} as a result section.
+
+The exact boundary comes from
+:func:`worker.families.planar_parallel.kinematics.kappa_region_boundary`
+(vertical 1-D root searches, the lowest run of each column); the map's grid then checks
+it: nodes of W_kappa0 above a gap in their column (overhangs, e.g. the hooks of the arms
+of W_kappa0 at small delta) are not part of that description, and are reported.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+from numpy.typing import NDArray
+
+from worker.common.grids import WorkspaceGrid
+from worker.families.planar_parallel import kinematics as pp
+from worker.families.planar_parallel.discretisation import BOUNDARY_COLUMNS, BOUNDARY_ROWS
+
+__all__ = ["KappaRegionSection", "kappa_region_section"]
+
+#: Grid area of W_kappa0 outside the column-wise description that is worth a note, as a
+#: fraction of the grid area of W_kappa0 (below it: boundary cells and rounding).
+UNDESCRIBED_NOTE_FRACTION = 0.005
+
+
+@dataclass(frozen=True)
+class KappaRegionSection:
+    """The result entry, its notes and the region (for the data files)."""
+
+    entry: dict[str, Any]
+    notes: list[str]
+    region: pp.KappaRegion
+
+    @property
+    def search(self) -> dict[str, Any]:
+        """How W_kappa0 was searched, for the result's ``discretisation``."""
+        return {
+            "method": "vertical 1-D root searches (Illinois), the lowest run of each column",
+            "columns": BOUNDARY_COLUMNS,
+            "rows": BOUNDARY_ROWS,
+            "x_half_span": float(self.region.x[-1]),
+        }
+
+
+def kappa_region_section(
+    arch: pp.Architecture,
+    limit: float,
+    working_mode: tuple[int, int],
+    grid: WorkspaceGrid,
+    inverse_condition: NDArray[np.float64],
+    length_unit: str,
+) -> KappaRegionSection:
+    """W_kappa0's boundary and area, checked against the map (``inverse_condition``
+    (ny, nx) on ``grid``); areas in ``length_unit`` squared."""
+    region = pp.kappa_region_boundary(
+        arch, limit, working_mode, columns=BOUNDARY_COLUMNS, rows=BOUNDARY_ROWS
+    )
+    inside = np.nan_to_num(inverse_condition, nan=-1.0) >= limit
+    area_grid = int(inside.sum()) * grid.cell_area
+    undescribed = int((inside & ~_described(region, grid)).sum()) * grid.cell_area
+    entry = {
+        "inverse_condition_limit": limit,
+        "found": region.found,
+        "area": region.area if region.found else 0.0,
+        "area_grid": area_grid,
+        "undescribed_area_grid": undescribed,
+        "boundary": [polygon.tolist() for polygon in region.boundary],
+        "message": region.message,
+    }
+    notes = []
+    if not region.found:
+        notes.append(f"W_kappa0 is empty: no point of the working mode has 1/kappa >= {limit:g} "
+                     "(none found by the column search).")  # fmt: skip
+    if area_grid > 0 and undescribed > UNDESCRIBED_NOTE_FRACTION * area_grid:
+        notes.append(
+            f"W_kappa0 reaches above a gap in some columns (about {undescribed:.4g} "
+            f"{length_unit}² of its {area_grid:.4g} on the grid): the "
+            "column-wise 'boundary' and 'area' describe the lowest part of each column only "
+            "(the part the paper's rectangle lives in); the figures outline all of it, at "
+            "the grid's resolution."
+        )
+    return KappaRegionSection(entry, notes, region)
+
+
+def _described(region: pp.KappaRegion, grid: WorkspaceGrid) -> NDArray[np.bool_]:
+    """Grid nodes within the column-wise description, (ny, nx): lower <= y <= upper of
+    either neighbouring column, with a grid step of slack."""
+    x, y = grid.x, grid.y
+    dx, dy = grid.step
+    if not region.found:
+        return np.zeros((y.size, x.size), dtype=bool)
+    right = np.clip(np.searchsorted(region.x, x), 0, region.x.size - 1)
+    left = np.clip(right - 1, 0, region.x.size - 1)
+    with np.errstate(invalid="ignore"):
+        lower = np.fmin(region.lower[left], region.lower[right])
+        upper = np.fmax(region.upper[left], region.upper[right])
+        spanned = (x >= region.x[0] - dx) & (x <= region.x[-1] + dx)
+        column = (y[:, None] >= lower[None, :] - dy) & (y[:, None] <= upper[None, :] + dy)
+    return np.asarray(column & spanned[None, :], dtype=bool)

@@ -1,0 +1,153 @@
+"""Three-link planar serial arms (Patel & Sobh): two job kinds.
+
+The method, its conventions and the paper's errata: docs/methods/planar-serial.md.
+
+``planar3r-dexterity-map``: d_z and D = d_z/3 over a grid for given links, with the
+paper's regions, the exact full-dexterity bands, task points and a trajectory.
+``planar3r-synthesis``: link lengths from task points or a trajectory by eqs (10)-(11),
+checked in the paper's three cases.
+
+Importing this package builds the two process definitions and nothing else: the job
+modules (numpy maps, matplotlib figures) are imported when a job runs.
+"""
+
+from __future__ import annotations
+
+from worker.contract import JobContext, JobOutcome
+from worker.families.planar_serial.costs import (
+    COST_LIMIT,
+    SYNC_COST_LIMIT,
+    TIME_LIMIT_S,
+    dexterity_map_cost,
+    synthesis_cost,
+)
+from worker.families.planar_serial.examples import DEXTERITY_MAP_EXAMPLES, SYNTHESIS_EXAMPLES
+from worker.families.planar_serial.specs import DexterityMapSpec, SynthesisSpec
+from worker.processes import ProcessDefinition, ProcessFile, data_files, figure_files
+
+__all__ = ["DEXTERITY_MAP", "PROCESSES", "SYNTHESIS"]
+
+
+def _run_dexterity_map(spec: DexterityMapSpec, ctx: JobContext) -> JobOutcome:
+    from worker.families.planar_serial.jobs.dexterity_map import run_dexterity_map
+
+    return run_dexterity_map(spec, ctx)
+
+
+def _run_synthesis(spec: SynthesisSpec, ctx: JobContext) -> JobOutcome:
+    from worker.families.planar_serial.jobs.synthesis import run_synthesis
+
+    return run_synthesis(spec, ctx)
+
+
+_LIMITS_TEXT = (
+    f"Cost: {{unit}}; at most {COST_LIMIT:,} (e.g. a 2001 x 2001 grid sampled every "
+    f"0.5°), {TIME_LIMIT_S:g} s per attempt."
+)
+
+DEXTERITY_MAP = ProcessDefinition(
+    id="planar3r-dexterity-map",
+    title="Three-link planar arm: dexterity map",
+    method_doc="planar-serial",
+    files=(
+        *figure_files("heatmap", "Dexterity d_z over the workspace"),
+        *figure_files("surface", "Dexterity d_z, 3-D surface"),
+        *figure_files("radial_section", "Dexterity d_z along a ray from the base"),
+        *data_files("dexterity_map", "Dexterity map"),
+    ),
+    description=(
+        "Orientation dexterity d_z (0..1) and dexterity index D = d_z/3 (Patel & Sobh "
+        "eqs 2-5) at every node of a grid, for links [l1, l2, l3] from the base. Fully "
+        "revolute joints: the exact closed form (docs/methods/planar-serial.md). With "
+        "joint limits: orientations sampled every orientation_step_deg, inverse kinematics "
+        "over both elbow branches, task points refined by bisection. Reports the paper's four "
+        "regions next to the exact bands of full dexterity, reachable and fully dexterous "
+        "areas, d_z at task points and along a trajectory (eq 4 mean), CSV/NPZ data and "
+        "heat-map, 3-D surface and radial-section plots. "
+        + _LIMITS_TEXT.format(
+            unit="grid points x orientation samples (1 per point without joint limits)"
+        )
+    ),
+    inputs_model=DexterityMapSpec,
+    run=_run_dexterity_map,
+    examples=DEXTERITY_MAP_EXAMPLES,
+    outputs={
+        "links": "The links [l1, l2, l3].",
+        "joint_limits_deg": "The joint limits used, or null.",
+        "length_unit": "The length unit.",
+        "method": "'exact-closed-form' (revolute joints) or 'orientation-sampling' (limits).",
+        "discretisation": "Grid (bounds, points_per_axis, step), effective orientation step "
+        "and sample count, elbow branches, method for task points and trajectory samples, "
+        "radial section.",
+        "regions": "The paper's regions 1-4 (distance ranges), its claim for each, and the "
+        "exact finding (fully dexterous bands inside, d_z range along a ray).",
+        "full_dexterity_bands": "Exact radii [[r0, r1], ...] where d_z = 1 (revolute joints).",
+        "areas": "Exact reachable and fully dexterous areas (revolute joints), their grid "
+        "estimates for this map, and the cell area.",
+        "summary": "d_z_max, mean d_z and D over reachable nodes, node counts.",
+        "task_points": "Per task point, in order: label, x, y, distance, d_z, D, region.",
+        "trajectory": "Along the sampled trajectory: samples, d_z_mean, D_mean (eq 4), "
+        "d_z_min, fully_dexterous_fraction; null without a trajectory.",
+        "data": "Names of the CSV and NPZ artifacts holding the map.",
+    },
+    cost=dexterity_map_cost,
+    cost_limit=COST_LIMIT,
+    sync_cost_limit=SYNC_COST_LIMIT,
+    time_limit_s=TIME_LIMIT_S,
+)
+
+SYNTHESIS = ProcessDefinition(
+    id="planar3r-synthesis",
+    title="Three-link planar arm: link lengths from task points or a trajectory",
+    method_doc="planar-serial",
+    files=(
+        *figure_files("synthesis_cases", "d_z of the design in the paper's cases"),
+        ProcessFile("synthesis_cases.npz", "d_z maps of the cases (NumPy arrays)"),
+    ),
+    description=(
+        "Patel & Sobh's synthesis: the exact distance range [d_min, d_max] of the task "
+        "points or trajectory from the base (optionally rounded outward, as the paper "
+        "does), l1 = (d_max + l3)/2 + 1 and l2 = (d_max + l3)/2 (eqs 10-11), Grashof's "
+        "criterion at d_min and d_max, the paper's claimed conditions next to the real "
+        "condition for full dexterity (docs/methods/planar-serial.md), and d_z at the task "
+        "points and along the trajectory in the paper's cases: 1 ideal, 2 with l2 and l3 "
+        "swapped, 3 under joint limits (if given). Notes flag task points short of full "
+        "dexterity and, listed again under paper_errata, the paper's errata when the inputs "
+        "are its examples. "
+        + _LIMITS_TEXT.format(
+            unit="grid points x (2 + orientation samples of Case 3 if joint limits are given)"
+        )
+    ),
+    inputs_model=SynthesisSpec,
+    run=_run_synthesis,
+    examples=SYNTHESIS_EXAMPLES,
+    outputs={
+        "distance_source": "'trajectory' or 'task_points': what set d_min and d_max.",
+        "d_min": "Exact smallest distance from the base.",
+        "d_max": "Exact largest distance from the base.",
+        "d_min_at": "Where d_min is attained, [x, y].",
+        "d_max_at": "Where d_max is attained, [x, y].",
+        "round_distances": "Whether d_min/d_max were rounded outward before eqs (10)-(11).",
+        "d_min_used": "d_min fed to the design.",
+        "d_max_used": "d_max fed to the design (eqs 10-11).",
+        "l3": "The chosen last link.",
+        "links": "The design [l1, l2, l3].",
+        "grashof": "Grashof's criterion on the four-bar (l1, l2, l3, d) at d_min and d_max.",
+        "paper_conditions": "The paper's claimed orderings at d_min and d_max, evaluated.",
+        "full_dexterity_bands": "Exact radii where the design has d_z = 1.",
+        "full_dexterity_condition": "The real condition: [d_min, d_max] inside "
+        "[l3 + |l1 - l2|, l1 + l2 - l3].",
+        "task_points": "Case 1 evaluation of each task point: label, x, y, distance, d_z, "
+        "D, region.",
+        "cases": "Cases 1-3: links, limits, bands and areas, task points, trajectory "
+        "summary, whether all task points are fully dexterous.",
+        "discretisation": "Plot grid, orientation sampling of Case 3, task-point method.",
+        "length_unit": "The length unit.",
+    },
+    cost=synthesis_cost,
+    cost_limit=COST_LIMIT,
+    time_limit_s=TIME_LIMIT_S,
+)
+
+#: This family's processes, in the order GET /v1/processes lists them.
+PROCESSES = (DEXTERITY_MAP, SYNTHESIS,)

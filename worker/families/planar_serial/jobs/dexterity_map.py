@@ -1,0 +1,267 @@
+"""The ``planar3r-dexterity-map`` job: d_z and D = d_z/3 over a grid (Patel & Sobh §2, §5).
+
+Exact closed form with fully revolute joints; orientation sampling (both elbow
+branches) under joint limits (docs/methods/planar-serial.md).  Reports the paper's regions
+next to the exact full-dexterity bands, areas, the task points and a trajectory, with
+CSV/NPZ data and three plots (heat map, 3-D surface, radial section).
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+import numpy as np
+from numpy.typing import NDArray
+
+from worker.common.data_export import npz_artifact
+from worker.common.figures import figure_artifacts
+from worker.common.progress import ProgressReporter
+from worker.contract import Artifact, JobContext, JobOutcome
+from worker.families.planar_serial import kinematics as planar_serial
+from worker.families.planar_serial.errata import dexterity_map_errata_notes
+from worker.families.planar_serial.jobs.data_export import dexterity_csv
+from worker.families.planar_serial.jobs.dexterity_evaluation import (
+    FULL_DEXTERITY_TOL,
+    Links,
+    OrientationSampling,
+    WorkspaceGrid,
+    grid_dexterity,
+    orientation_sampling,
+    point_dexterity,
+    point_method,
+    workspace_grid,
+)
+from worker.families.planar_serial.jobs.regions import region_2_note, region_table
+from worker.families.planar_serial.jobs.task_points import shortfall_notes, task_point_entries
+from worker.families.planar_serial.jobs.trajectories import (
+    trajectory_path,
+    trajectory_samples,
+    trajectory_summary,
+)
+from worker.families.planar_serial.plots import figures as plots
+from worker.families.planar_serial.specs import DexterityMapSpec
+
+__all__ = ["RADIAL_SAMPLES", "run_dexterity_map"]
+
+FloatArray = NDArray[np.float64]
+
+#: Distances sampled along the radial section (the paper's Fig 7).
+RADIAL_SAMPLES = 2001
+#: Angle (deg) of the radial section's ray; d_z depends on it only under joint limits.
+RADIAL_ANGLE_DEG = 0.0
+
+
+def run_dexterity_map(spec: DexterityMapSpec, ctx: JobContext) -> JobOutcome:
+    """Run the job: validated inputs in, result document + artifacts + notes out."""
+    progress = ProgressReporter(ctx)
+    progress.report(0.0, "starting")
+    links: Links = spec.links
+    grid = workspace_grid(spec.grid, links)
+    sampling = orientation_sampling(spec.joint_limits_deg, spec.orientation_step_deg)
+    d_z = grid_dexterity(links, grid, sampling, progress.span(2.0, 80.0, "dexterity map"))
+    distance = np.hypot(*np.meshgrid(grid.x, grid.y))
+    region = planar_serial.paper_regions(links, distance)
+
+    progress.report(80.0, "task points and trajectory")
+    task_xy = np.asarray(spec.task_points or (), dtype=float).reshape(-1, 2)
+    task_entries = task_point_entries(
+        spec.labels,
+        task_xy,
+        point_dexterity(links, task_xy, sampling),
+        planar_serial.paper_regions(links, np.hypot(task_xy[:, 0], task_xy[:, 1])),
+    )
+    trajectory = None
+    if spec.trajectory is not None:
+        samples = trajectory_samples(spec.trajectory)
+        trajectory = trajectory_summary(point_dexterity(links, samples, sampling))
+
+    progress.report(85.0, "radial section")
+    radial_d = np.linspace(0.0, _radial_reach(links), RADIAL_SAMPLES)
+    radial_dz = _radial_section(links, radial_d, sampling)
+
+    result = _result(spec, grid, sampling, d_z, task_entries, trajectory)
+    notes = _notes(spec, sampling, task_entries, trajectory)
+    errata = dexterity_map_errata_notes(spec, result)
+
+    artifacts: tuple[Artifact, ...] = ()
+    if spec.plots:
+        progress.report(90.0, "plots")
+        path = None if spec.trajectory is None else trajectory_path(spec.trajectory)
+        artifacts = _plots(
+            spec, sampling is not None, grid, d_z, task_xy, path, (radial_d, radial_dz)
+        )
+    progress.report(97.0, "data files")
+    artifacts += _data(spec, grid, d_z, region)
+    progress.report(100.0, "done")
+    return JobOutcome(result=result, artifacts=artifacts, notes=tuple(notes), errata=tuple(errata))
+
+
+def _radial_reach(links: Links) -> float:
+    """How far the radial section runs: 1.05 (l1 + l2 + l3), like the default grid."""
+    return 1.05 * math.fsum(links)
+
+
+def _radial_section(
+    links: Links, distances: FloatArray, sampling: OrientationSampling | None
+) -> FloatArray:
+    angle = math.radians(RADIAL_ANGLE_DEG)
+    points = np.stack([distances * math.cos(angle), distances * math.sin(angle)], axis=-1)
+    if sampling is None:
+        return planar_serial.exact_orientation_dexterity(links, points)
+    return planar_serial.limited_orientation_dexterity(
+        links, points, sampling.joint_limits_rad, sampling.requested_step_rad
+    )
+
+
+def _result(
+    spec: DexterityMapSpec,
+    grid: WorkspaceGrid,
+    sampling: OrientationSampling | None,
+    d_z: FloatArray,
+    task_entries: list[dict[str, Any]],
+    trajectory: dict[str, float | int] | None,
+) -> dict[str, Any]:
+    links = spec.links
+    bands = planar_serial.full_dexterity_bands(links)
+    inner, outer = planar_serial.reach_radii(links)
+    reachable = d_z > 0.0
+    full = d_z >= 1.0 - FULL_DEXTERITY_TOL
+    reachable_dz = d_z[reachable]
+    mean_reachable = float(reachable_dz.mean()) if reachable_dz.size else 0.0
+    return {
+        "links": list(links),
+        "joint_limits_deg": _limits_list(spec),
+        "length_unit": spec.length_unit,
+        "method": "exact-closed-form" if sampling is None else "orientation-sampling",
+        "discretisation": {
+            "grid": grid.describe(),
+            "orientation_step_deg": None if sampling is None else sampling.effective_step_deg,
+            "orientation_samples": None if sampling is None else sampling.samples,
+            "elbow_branches": None if sampling is None else 2,
+            "task_points": point_method(sampling),
+            "radial_section": {
+                "angle_deg": RADIAL_ANGLE_DEG,
+                "samples": RADIAL_SAMPLES,
+                "d_to": _radial_reach(links),
+                "method": "exact-closed-form" if sampling is None else "orientation-sampling",
+            },
+        },
+        "regions": region_table(links),
+        "full_dexterity_bands": [list(band) for band in bands],
+        "areas": {
+            "reachable": math.pi * (outer**2 - inner**2),
+            "fully_dexterous": planar_serial.band_area(bands),
+            "reachable_grid": int(reachable.sum()) * grid.cell_area,
+            "fully_dexterous_grid": int(full.sum()) * grid.cell_area,
+            "cell_area": grid.cell_area,
+        },
+        "summary": {
+            "d_z_max": float(d_z.max()),
+            "d_z_mean_reachable": mean_reachable,
+            "D_mean_reachable": mean_reachable / 3.0,
+            "reachable_points": int(reachable.sum()),
+            "fully_dexterous_points": int(full.sum()),
+        },
+        "task_points": task_entries,
+        "trajectory": trajectory,
+        "data": {"csv": "dexterity_map.csv", "npz": "dexterity_map.npz"},
+    }
+
+
+def _limits_list(spec: DexterityMapSpec) -> list[list[float]] | None:
+    if spec.joint_limits_deg is None:
+        return None
+    return [list(pair) for pair in spec.joint_limits_deg]
+
+
+def _notes(
+    spec: DexterityMapSpec,
+    sampling: OrientationSampling | None,
+    task_entries: list[dict[str, Any]],
+    trajectory: dict[str, float | int] | None,
+) -> list[str]:
+    notes = [region_2_note(spec.links)]
+    if spec.joint_limits_deg is not None and sampling is None:
+        notes.append("Every joint limit spans the full turn [-180, 180]: the exact closed form "
+                     "for unlimited joints was used.")  # fmt: skip
+    if sampling is not None:
+        notes.append(
+            f"Under joint limits d_z is sampled every {sampling.effective_step_deg:.6g}° "
+            f"({sampling.samples} orientations, both elbow branches); the map is no longer "
+            "radially symmetric, so the radial section holds only along the ray at "
+            f"{RADIAL_ANGLE_DEG:g}° (task points are not marked on it). "
+            "'full_dexterity_bands' and the exact areas are for unlimited joints."
+        )
+    notes.extend(shortfall_notes(task_entries))
+    if trajectory is not None and trajectory["fully_dexterous_fraction"] < 1.0:
+        percent = 100.0 * trajectory["fully_dexterous_fraction"]
+        notes.append(
+            f"The trajectory is fully dexterous at {percent:.1f}% of its "
+            f"{trajectory['samples']} samples (min d_z = {trajectory['d_z_min']:.4f})."
+        )
+    return notes
+
+
+def _plots(
+    spec: DexterityMapSpec,
+    limited: bool,
+    grid: WorkspaceGrid,
+    d_z: FloatArray,
+    task_xy: FloatArray,
+    path: FloatArray | None,
+    radial: tuple[FloatArray, FloatArray],
+) -> tuple[Artifact, ...]:
+    links = spec.links
+    l1, l2, l3 = links
+    title = f"3R arm ({l1:g}, {l2:g}, {l3:g}){', joint-limited' if limited else ''}"
+    radii = planar_serial.region_radii(links)
+    bands = planar_serial.full_dexterity_bands(links)
+    shown = np.where(d_z > 0.0, d_z, np.nan)  # NaN: drawn as unreachable
+    labels = spec.labels if task_xy.size else None
+    points = task_xy if task_xy.size else None
+    heatmap = plots.dexterity_heatmap_figure(
+        grid.x, grid.y, shown, links=links, region_radii=radii, bands=bands,
+        task_points=points, task_labels=labels, trajectory=path,
+        title=f"Dexterity map, {title}", length_unit=spec.length_unit,
+        joint_limited=limited,
+    )  # fmt: skip
+    surface = plots.dexterity_surface_figure(
+        grid.x, grid.y, shown, title=f"Dexterity surface, {title}", length_unit=spec.length_unit
+    )
+    # Under joint limits the section holds only on its ray: task points off it are not marked.
+    marked = not limited and task_xy.size > 0
+    section = plots.radial_section_figure(
+        *radial, region_radii=radii, bands=bands,
+        task_distances=np.hypot(task_xy[:, 0], task_xy[:, 1]).tolist() if marked else None,
+        task_labels=labels if marked else None, title=f"Radial section, {title}",
+        length_unit=spec.length_unit, angle_deg=RADIAL_ANGLE_DEG,
+    )  # fmt: skip
+    return (
+        *figure_artifacts(heatmap, "heatmap", "Dexterity d_z over the workspace"),
+        *figure_artifacts(surface, "surface", "Dexterity d_z, 3-D surface"),
+        *figure_artifacts(section, "radial_section", "Dexterity d_z along a ray from the base"),
+    )
+
+
+def _data(
+    spec: DexterityMapSpec, grid: WorkspaceGrid, d_z: FloatArray, region: NDArray[np.int8]
+) -> tuple[Artifact, ...]:
+    limits = np.asarray(
+        spec.joint_limits_deg if spec.joint_limits_deg is not None else np.full((3, 2), np.nan)
+    )
+    csv = dexterity_csv("dexterity_map.csv", grid.x, grid.y, d_z, region, "Dexterity map (CSV)")
+    npz = npz_artifact(
+        "dexterity_map.npz",
+        {
+            "x": grid.x,
+            "y": grid.y,
+            "d_z": d_z,
+            "D": d_z / 3.0,
+            "region": region,
+            "links": np.asarray(spec.links),
+            "joint_limits_deg": limits,
+        },
+        "Dexterity map (NumPy arrays)",
+    )
+    return csv, npz

@@ -1,0 +1,1 @@
+"""One module per process: a spec in, a result and its artifacts out."""

@@ -1,0 +1,4 @@
+"""Figures with ``matplotlib.figure.Figure`` (never pyplot).
+
+This package imports nothing, so loading it does not load matplotlib.
+"""
