@@ -132,4 +132,7 @@ FOURBAR_GRASHOF = ProcessDefinition(
 )
 
 #: This family's processes, in the order GET /v1/processes lists them.
-PROCESSES = (CHAIN_PARALLELISM, FOURBAR_GRASHOF,)
+PROCESSES = (
+    CHAIN_PARALLELISM,
+    FOURBAR_GRASHOF,
+)

@@ -20,7 +20,7 @@ from worker.families.chains.kinematics.fourbar import (
     classify_four_bar,
     four_bar_poses,
 )
-from worker.families.chains.plots import figures as plots
+from worker.families.chains.plots import fourbar as plots
 
 __all__ = ["POSE_SAMPLES", "fourbar_result", "run_fourbar_grashof"]
 

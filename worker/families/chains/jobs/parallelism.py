@@ -19,7 +19,8 @@ from worker.common.figures import figure_artifacts
 from worker.contract import Artifact, JobContext, JobOutcome
 from worker.families.chains.errata import parallelism_errata_notes
 from worker.families.chains.kinematics import parallelism as chains
-from worker.families.chains.plots import figures as plots
+from worker.families.chains.plots import bars as bar_plots
+from worker.families.chains.plots import graphs as graph_plots
 from worker.families.chains.specs import ChainParallelismSpec, LoopChain, to_chain
 
 __all__ = ["SUMS_RTOL", "chain_entry", "rankings", "run_chain_parallelism"]
@@ -223,7 +224,7 @@ def _artifacts(
     ranking: dict[str, Any],
 ) -> tuple[Artifact, ...]:
     panels = [
-        plots.ChainGraph(
+        graph_plots.ChainGraph(
             name=entry["name"],
             links=structure.links,
             polygonal=frozenset(
@@ -237,11 +238,11 @@ def _artifacts(
         )
         for entry, structure in zip(entries, structures, strict=True)
     ]
-    graphs = plots.chain_graphs_figure(
+    graphs = graph_plots.chain_graphs_figure(
         panels, title="Kinematic chains: link graphs and loops", length_unit=spec.length_unit
     )
     q_key = ranking["by_Q"]["measure"]
-    bars = plots.parallelism_bars_figure(
+    bars = bar_plots.parallelism_bars_figure(
         [entry["name"] for entry in entries],
         p_normalized=[entry["P_normalized"] for entry in entries],
         q=[entry[q_key] for entry in entries],

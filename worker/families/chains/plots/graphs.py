@@ -1,6 +1,7 @@
-"""Figures of the kinematic-chain jobs: link graphs with their loops, P and Q compared.
+"""The link graph of a kinematic chain, with its loops (the chain-parallelism job).
 
-Every function takes plain data and returns a :class:`matplotlib.figure.Figure`;
+Every figure function of :mod:`worker.families.chains.plots` takes plain data and
+returns a :class:`matplotlib.figure.Figure`;
 :func:`worker.common.figures.figure_artifacts` turns it into PNG/SVG bytes.
 
 The link graph follows the paper (Fig 1b): every link is a vertex (a circle for a
@@ -20,10 +21,8 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 
 import numpy as np
-from matplotlib import colormaps
 from matplotlib.artist import Artist
 from matplotlib.axes import Axes
-from matplotlib.colors import Normalize
 from matplotlib.figure import Figure
 from matplotlib.lines import Line2D
 from matplotlib.patches import Patch, Polygon
@@ -32,13 +31,7 @@ from numpy.typing import NDArray
 
 from worker.common.figures import plain_text
 
-__all__ = [
-    "ChainGraph",
-    "chain_graphs_figure",
-    "fourbar_figure",
-    "graph_layout",
-    "parallelism_bars_figure",
-]
+__all__ = ["ChainGraph", "FloatArray", "bad_argument", "chain_graphs_figure", "graph_layout"]
 
 FloatArray = NDArray[np.float64]
 _LOOP_COLOURS = (
@@ -53,13 +46,8 @@ _LOOP_COLOURS = (
 )
 _PERIPHERAL_COLOUR = "0.35"
 _EDGE_COLOUR = "0.2"
-_BEST_COLOUR = "#2c5d8a"
-_OTHER_COLOUR = "#9db7cf"
 _POLYGON_MARKERS = {3: "^", 4: "s", 5: "p", 6: "h"}
-_ROLE_COLOURS = {"ground": "0.25", "input": "#4c78a8", "coupler": "#f58518", "output": "#54a24b"}
 _MAX_COLUMNS = 3
-#: Colour scale of the full-turn table (1: turns fully, 0: rocks) on the "Blues" map.
-_TURNS_VMIN, _TURNS_VMAX = -0.35, 1.25
 
 
 @dataclass(frozen=True)
@@ -81,7 +69,8 @@ class ChainGraph:
     caption: str = ""
 
 
-def _bad(parameter: str, where: str, expected: str, got: object) -> ValueError:
+def bad_argument(parameter: str, where: str, expected: str, got: object) -> ValueError:
+    """The ValueError of a bad argument of the chain figures (``got`` shown by repr)."""
     return ValueError(
         f"The '{parameter}' parameter of {where} must be {expected}. Got {got!r} instead."
     )
@@ -314,13 +303,15 @@ def chain_graphs_figure(
     """One panel per chain: its link graph, loops shaded and numbered, side lengths."""
     where = "chain_graphs_figure"
     if not graphs:
-        raise _bad("graphs", where, "at least one ChainGraph", graphs)
+        raise bad_argument("graphs", where, "at least one ChainGraph", graphs)
     for graph in graphs:
         if len(graph.loop_lengths) != len(graph.loops) or any(
             len(lengths) != len(loop)
             for lengths, loop in zip(graph.loop_lengths, graph.loops, strict=False)
         ):
-            raise _bad("graphs", where, "ChainGraphs with one length per loop side", graph.name)
+            raise bad_argument(
+                "graphs", where, "ChainGraphs with one length per loop side", graph.name
+            )
     columns = min(len(graphs), _MAX_COLUMNS)
     rows = math.ceil(len(graphs) / columns)
     fig = Figure(figsize=(4.1 * columns, 4.3 * rows + 0.6), layout="constrained")
@@ -328,251 +319,4 @@ def chain_graphs_figure(
         _draw_graph(fig.add_subplot(rows, columns, index + 1), graph)
     fig.suptitle(plain_text(title), fontsize=13, fontweight="bold")
     _graph_legend(fig, graphs, length_unit, columns)
-    return fig
-
-
-def _ranks(values: FloatArray, descending: bool) -> list[int]:
-    """1-based competition ranks; values within 1e-12 (relative) tie."""
-    signed = -values if descending else values
-    return [
-        1 + int(np.sum((signed < v) & ~np.isclose(signed, v, rtol=1e-12, atol=0.0))) for v in signed
-    ]
-
-
-def _bar_panel(
-    ax: Axes, names: Sequence[str], values: FloatArray, descending: bool, label: str, axis: str
-) -> None:
-    ranks = _ranks(values, descending)
-    y = np.arange(len(names))
-    colours = [_BEST_COLOUR if r == 1 else _OTHER_COLOUR for r in ranks]
-    ax.barh(y, values, color=colours, height=0.6, zorder=2)
-    span = float(values.max()) if values.size and float(values.max()) > 0 else 1.0
-    for yi, (value, rank) in enumerate(zip(values.tolist(), ranks, strict=True)):
-        ax.text(
-            value + 0.015 * span,
-            yi,
-            f"{value:.6g}   #{rank}",
-            va="center",
-            ha="left",
-            fontsize=9,
-            fontweight="bold" if rank == 1 else "normal",
-            color=_BEST_COLOUR if rank == 1 else "0.15",
-        )
-    ax.set_yticks(y, [plain_text(n) for n in names], fontsize=10)
-    ax.invert_yaxis()
-    ax.set_xlim(0.0, span * 1.45)
-    ax.ticklabel_format(axis="x", style="sci", scilimits=(-3, 4))
-    ax.grid(axis="x", color="0.9", zorder=0)
-    ax.set_title(label, fontsize=11)
-    ax.set_xlabel(axis, fontsize=10)
-
-
-def parallelism_bars_figure(
-    names: Sequence[str],
-    *,
-    p_normalized: Sequence[float],
-    q: Sequence[float],
-    q_normalized: bool = False,
-    title: str,
-    length_unit: str = "units",
-) -> Figure:
-    """Normalised P (larger: more uniform rigidity) beside Q (smaller: more parallel).
-
-    Each bar is labelled with its value and rank (#1 best, ties share a rank); the best
-    chain(s) of each measure are drawn dark.  ``q_normalized``: ``q`` holds Q
-    of the normalised lengths (chains of different total length), which has no unit;
-    otherwise Q is in ``length_unit`` to the fourth power.
-    """
-    where = "parallelism_bars_figure"
-    p_arr = np.asarray(p_normalized, dtype=float)
-    q_arr = np.asarray(q, dtype=float)
-    if not names or p_arr.shape != (len(names),) or q_arr.shape != (len(names),):
-        raise _bad(
-            "p_normalized",
-            where,
-            "one value per name in p_normalized and q",
-            (len(names), p_arr.shape, q_arr.shape),
-        )
-    if not (np.all(np.isfinite(p_arr)) and np.all(np.isfinite(q_arr))):
-        raise _bad("q", where, "finite values", q)
-    fig = Figure(figsize=(10.0, 2.0 + 0.55 * len(names)), layout="constrained")
-    left, right = fig.add_subplot(1, 2, 1), fig.add_subplot(1, 2, 2)
-    _bar_panel(
-        left, names, p_arr, True, "normalised P  (larger: more uniform rigidity)",
-        "P of l / sum(l), eq 1 (no unit)",
-    )  # fmt: skip
-    q_label = "Q of normalised lengths" if q_normalized else "Q"
-    q_axis = (
-        "Q of l / sum(l), eq 3 (no unit)"
-        if q_normalized
-        else f"Q, eq 3 [{plain_text(length_unit)}⁴]"
-    )
-    _bar_panel(right, names, q_arr, False, f"{q_label}  (smaller: more parallel)", q_axis)
-    right.set_yticklabels([])
-    left.set_ylabel("chain", fontsize=10)
-    fig.legend(
-        handles=[
-            Patch(color=_BEST_COLOUR, label="best of the measure (rank #1; ties share a rank)"),
-            Patch(color=_OTHER_COLOUR, label="other chains (value and rank #k on the bar)"),
-        ],
-        loc="outside lower center", ncols=2, fontsize=9, frameon=False,
-    )  # fmt: skip
-    fig.suptitle(plain_text(title), fontsize=13, fontweight="bold")
-    return fig
-
-
-def _motion_panel(
-    ax: Axes, poses: FloatArray, lengths: Sequence[float], roles: Sequence[str], unit: str
-) -> None:
-    """The ground fixed, the paths of the two moving joints, ghosted and one drawn pose."""
-    ground = roles.index("ground")
-    link_of = {role: roles.index(role) for role in roles}
-    tip, joint = (ground + 2) % 4, (ground + 3) % 4  # joints J_{g+2}, J_{g+3}
-    ok = np.isfinite(poses[..., 0, 0])
-    for branch, style in enumerate(("-", "--")):
-        ax.plot(
-            poses[branch, :, tip, 0],
-            poses[branch, :, tip, 1],
-            color=_ROLE_COLOURS["input"],
-            lw=2.6,
-            alpha=0.55,
-            zorder=1,
-            label="path of the input-coupler joint" if branch == 0 else None,
-        )
-        ax.plot(
-            poses[branch, :, joint, 0],
-            poses[branch, :, joint, 1],
-            style,
-            color=_ROLE_COLOURS["output"],
-            lw=2.6,
-            alpha=0.55,
-            zorder=1,
-            label=f"path of the coupler-output joint, assembly branch {branch + 1}",
-        )
-    feasible = np.flatnonzero(ok[0])
-    for n, k in enumerate(feasible[:: max(1, feasible.size // 10)]):
-        pose = poses[0, k]
-        for role in ("input", "coupler", "output"):
-            a, b = pose[link_of[role]], pose[(link_of[role] + 1) % 4]
-            ax.plot(
-                [a[0], b[0]],
-                [a[1], b[1]],
-                color=_ROLE_COLOURS[role],
-                lw=1.0,
-                alpha=0.22,
-                label="poses along branch 1" if n == 0 and role == "coupler" else None,
-            )
-    if feasible.size:
-        angles = np.linspace(0.0, 2.0 * np.pi, poses.shape[1])
-        shown = feasible[np.argmin(np.abs(np.angle(np.exp(1j * (angles[feasible] - 1.1)))))]
-        pose = poses[0, shown]
-        for role in ("ground", "input", "coupler", "output"):
-            k = link_of[role]
-            a, b = pose[k], pose[(k + 1) % 4]
-            ax.plot(
-                [a[0], b[0]],
-                [a[1], b[1]],
-                color=_ROLE_COLOURS[role],
-                lw=4.0,
-                solid_capstyle="round",
-                zorder=3,
-            )
-            middle = (a + b) / 2.0
-            ax.annotate(
-                f"{k}: {role} {lengths[k]:g}",
-                middle,
-                xytext=(0, 9),
-                textcoords="offset points",
-                ha="center",
-                fontsize=9,
-                color=_ROLE_COLOURS[role],
-                fontweight="bold",
-                zorder=5,
-                bbox={"boxstyle": "round,pad=0.15", "fc": "white", "ec": "none", "alpha": 0.8},
-            )
-        ax.scatter(pose[:, 0], pose[:, 1], s=36, color="white", edgecolor="0.15", zorder=4)
-    pivots = (
-        poses[0, 0, [(ground + 1) % 4, ground]]
-        if ok[0, 0]
-        else np.array([[0.0, 0.0], [lengths[ground], 0.0]])
-    )
-    ax.scatter(
-        pivots[:, 0],
-        pivots[:, 1] - 0.04 * max(lengths),
-        marker="^",
-        s=120,
-        color="0.25",
-        zorder=4,
-        label="ground pivots",
-    )
-    ax.set_aspect("equal")
-    ax.grid(color="0.92")
-    ax.set_xlabel(f"x [{plain_text(unit)}]")
-    ax.set_ylabel(f"y [{plain_text(unit)}]")
-    ax.set_title("range of motion with the ground fixed (one pose drawn bold)", fontsize=9.5)
-
-
-def _turns_panel(
-    ax: Axes, full_turns: NDArray[np.bool_], lengths: Sequence[float], roles: Sequence[str]
-) -> None:
-    """A 4 x 4 table: which links turn fully relative to which."""
-    colours = np.where(full_turns, 1.0, 0.0)
-    np.fill_diagonal(colours, np.nan)
-    ax.imshow(colours, cmap="Blues", vmin=_TURNS_VMIN, vmax=_TURNS_VMAX)
-    labels = [f"{k}: {roles[k]}\n{lengths[k]:g}" for k in range(4)]
-    ax.set_xticks(range(4), labels, fontsize=8.5)
-    ax.set_yticks(range(4), labels, fontsize=8.5)
-    for i in range(4):
-        for j in range(4):
-            text = "" if i == j else ("full turn" if full_turns[i, j] else "rocks")
-            ax.text(
-                j,
-                i,
-                text,
-                ha="center",
-                va="center",
-                fontsize=8.5,
-                color="white" if full_turns[i, j] else "0.3",
-            )
-    ax.set_title("does link (column) turn fully\nrelative to link (row)?", fontsize=9.5)
-    ax.set_xlabel("link that moves")
-    ax.set_ylabel("link held fixed")
-    ax.tick_params(length=0)
-
-
-def fourbar_figure(
-    poses: FloatArray,
-    *,
-    lengths: Sequence[float],
-    roles: Sequence[str],
-    full_turns: NDArray[np.bool_],
-    title: str,
-    length_unit: str = "units",
-) -> Figure:
-    """A four-bar's range of motion (poses from :func:`worker.families.chains.kinematics.fourbar.
-    four_bar_poses`, (2, k, 4, 2)) beside the 4 x 4 table of fully turning pairs."""
-    where = "fourbar_figure"
-    arr = np.asarray(poses, dtype=float)
-    if arr.ndim != 4 or arr.shape[0] != 2 or arr.shape[2:] != (4, 2):
-        raise _bad("poses", where, "an array of shape (2, k, 4, 2)", arr.shape)
-    if sorted(roles) != sorted(_ROLE_COLOURS) or len(lengths) != 4:
-        raise _bad("roles", where, "the four roles, one per link, with four lengths", roles)
-    turns = np.asarray(full_turns, dtype=bool)
-    if turns.shape != (4, 4):
-        raise _bad("full_turns", where, "a (4, 4) boolean array", turns.shape)
-    fig = Figure(figsize=(11.0, 6.2), layout="constrained")
-    grid = fig.add_gridspec(1, 2, width_ratios=(1.75, 1.0))
-    motion = fig.add_subplot(grid[0, 0])
-    _motion_panel(motion, arr, lengths, roles, length_unit)
-    _turns_panel(fig.add_subplot(grid[0, 1]), turns, lengths, roles)
-    shade = colormaps["Blues"]
-    scale = Normalize(vmin=_TURNS_VMIN, vmax=_TURNS_VMAX)
-    handles, _ = motion.get_legend_handles_labels()
-    handles += [
-        Patch(color=shade(scale(1.0)), label="turns fully"),
-        Patch(color=shade(scale(0.0)), label="rocks (cannot turn fully)"),
-    ]
-    fig.legend(handles=handles, loc="outside lower center", ncols=3, fontsize=8.5,
-               frameon=False)  # fmt: skip
-    fig.suptitle(plain_text(title), fontsize=12.5, fontweight="bold")
     return fig
