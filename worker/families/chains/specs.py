@@ -3,7 +3,7 @@
 Every model is frozen with ``extra="forbid"`` and rejects NaN and infinity; the field
 descriptions become the public JSON schema served at ``GET /v1/processes/{id}``.
 
-A chain's description is checked in full (:func:`worker.families.chains.kinematics.parallelism.
+A chain's description is checked in full (:func:`worker.families.chains.kinematics.
 chain_problems`) and the chains against each other; every problem becomes a pydantic
 error located at the offending field (``chains.1.loops.2``) whose message repeats the
 path, e.g. ``chains[1].loops[2]: link '9' is not defined``.
@@ -28,7 +28,7 @@ from pydantic_core import InitErrorDetails, PydanticCustomError
 
 from worker.common.numeric_ranges import PositiveLength, length_ratio_problem, ratio_schema
 from worker.common.specs import FrozenSpec
-from worker.families.chains.kinematics import parallelism as chains
+from worker.families.chains import kinematics as chains
 
 __all__ = [
     "MAX_CHAINS",
@@ -198,7 +198,7 @@ Chain = Annotated[
 
 
 def to_chain(chain: LoopChain | MultiLoopChain) -> chains.Chain:
-    """The plain-data chain of :mod:`worker.families.chains.kinematics.parallelism`."""
+    """The plain-data chain of :mod:`worker.families.chains.kinematics`."""
     if isinstance(chain, LoopChain):
         return chains.single_loop_chain(chain.name, chain.lengths)
     links: dict[str, chains.LinkLengths] = {

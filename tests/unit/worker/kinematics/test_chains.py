@@ -14,7 +14,8 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from worker.families.chains.kinematics import parallelism as c
+from worker.families.chains import kinematics as c
+from worker.families.chains.kinematics import validation
 
 TERNARY_1 = {"a": 6.0, "b": 7.0, "c": 9.0}
 TERNARY_4 = {"a": 6.0, "b": 8.0, "c": 9.0}
@@ -358,10 +359,10 @@ def test_polygon_sides_must_meet_at_corners() -> None:
              "D": 1.0}  # fmt: skip
     loops = (("Q.a", "B", "A"), ("Q.b", "A", "B"), ("Q.c", "D", "C"), ("Q.d", "C", "D"))
     chain = c.Chain("split", links, loops)
-    message = c._corner_problem(chain, "Q", links["Q"], ["A", "B", "C", "D"])
+    message = validation._corner_problem(chain, "Q", links["Q"], ["A", "B", "C", "D"])
     assert message is not None and message.startswith("the sides of link 'Q' do not meet")
-    assert c._corner_problem(FIG_4A, "1", TERNARY_1, ["2", "4", "7"]) is None
-    binary = c._corner_problem(FIG_4A, "2", 11.0, ["1", "3", "4"])
+    assert validation._corner_problem(FIG_4A, "1", TERNARY_1, ["2", "4", "7"]) is None
+    binary = validation._corner_problem(FIG_4A, "2", 11.0, ["1", "3", "4"])
     assert binary is not None and "a binary link has 2 joints" in binary
     # through the public entry the same description fails Euler's count first
     assert [p.where for p in c.chain_problems(chain)] == [("loops",)]

@@ -10,7 +10,7 @@ from matplotlib.figure import Figure
 
 from tests.unit.worker.plotting.test_render import png_pixels, svg_strings
 from worker.common.figures import figure_artifacts
-from worker.families.chains.kinematics import parallelism as c
+from worker.families.chains import kinematics as c
 from worker.families.chains.kinematics.fourbar import classify_four_bar, four_bar_poses
 from worker.families.chains.plots import bars, fourbar
 from worker.families.chains.plots import graphs as graph_plots

@@ -17,8 +17,8 @@ import numpy as np
 
 from worker.common.figures import figure_artifacts
 from worker.contract import Artifact, JobContext, JobOutcome
+from worker.families.chains import kinematics as chains
 from worker.families.chains.errata import parallelism_errata_notes
-from worker.families.chains.kinematics import parallelism as chains
 from worker.families.chains.plots import bars as bar_plots
 from worker.families.chains.plots import graphs as graph_plots
 from worker.families.chains.specs import ChainParallelismSpec, LoopChain, to_chain
