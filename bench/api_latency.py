@@ -33,6 +33,8 @@ import httpx
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
+from timing import percentile
+
 from tests.integration.servers import deployment, wait_for
 
 SMALL_URL = "/v1/processes/fourbar-grashof/execution"
@@ -49,10 +51,6 @@ def heavy(tag: int) -> dict[str, object]:
         "orientation_step_deg": 0.5,
     }
 
-
-def percentile(values: list[float], q: float) -> float:
-    ordered = sorted(values)
-    return ordered[min(len(ordered) - 1, round(q * (len(ordered) - 1)))]
 
 
 class Load:

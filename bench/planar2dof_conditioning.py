@@ -30,9 +30,9 @@ import inspect
 import math
 import os
 import time
-from collections.abc import Callable
 
 import numpy as np
+from timing import best_time
 
 from worker.families.planar_parallel.discretisation import (
     RECTANGLE_BOUNDARY_SAMPLES,
@@ -57,13 +57,6 @@ SWEEP_DELTAS = np.round(np.arange(1.0, 2.5 + 1e-9, 0.01), 10)
 DEFAULT_COLUMNS = inspect.signature(design_sweep).parameters["columns"].default
 
 
-def best_time(run: Callable[[], object], repeat: int) -> float:
-    times = []
-    for _ in range(repeat):
-        start = time.perf_counter()
-        run()
-        times.append(time.perf_counter() - start)
-    return min(times)
 
 
 def square_grid(arch: Architecture, points_per_axis: int) -> tuple[np.ndarray, np.ndarray]:

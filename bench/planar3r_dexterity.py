@@ -23,9 +23,9 @@ import math
 import os
 import time
 import tracemalloc
-from collections.abc import Callable
 
 import numpy as np
+from timing import best_time, seconds_per_item
 
 from worker.families.planar_serial.kinematics import (
     exact_orientation_dexterity,
@@ -49,22 +49,15 @@ def square_grid(points_per_axis: int) -> np.ndarray:
     return np.stack([xs, ys], axis=-1)
 
 
-def best_time(run: Callable[[], object], repeat: int) -> float:
-    times = []
-    for _ in range(repeat):
-        start = time.perf_counter()
-        run()
-        times.append(time.perf_counter() - start)
-    return min(times)
 
 
 def naive_seconds_per_point(
     points: np.ndarray, step: float, limits: list[list[float]] | None
 ) -> float:
-    start = time.perf_counter()
-    for x, y in points:
-        sampled_orientation_dexterity(LINKS, (float(x), float(y)), step, limits)
-    return (time.perf_counter() - start) / len(points)
+    return seconds_per_item(
+        lambda p: sampled_orientation_dexterity(LINKS, (float(p[0]), float(p[1])), step, limits),
+        points,
+    )
 
 
 def blas_note() -> str:

@@ -21,9 +21,9 @@ import argparse
 import math
 import os
 import time
-from collections.abc import Callable
 
 import numpy as np
+from timing import best_time
 
 from worker.families.spherical_parallel.kinematics import (
     SampleSet,
@@ -39,13 +39,6 @@ TABLE_1 = SpmDesign.from_degrees(60.0, 90.0, 90.0)
 CONE_120 = Workspace(math.radians(60.0))
 
 
-def best_time(run: Callable[[], object], repeat: int) -> float:
-    times = []
-    for _ in range(repeat):
-        start = time.perf_counter()
-        run()
-        times.append(time.perf_counter() - start)
-    return min(times)
 
 
 def compare_indices(samples: np.ndarray, repeat: int) -> None:
