@@ -52,7 +52,6 @@ def heavy(tag: int) -> dict[str, object]:
     }
 
 
-
 class Load:
     """One open-loop run: latencies (ms) by method, and the failures."""
 
@@ -122,8 +121,7 @@ def measure(rate: float, seconds: float, nice: int) -> dict[str, dict[str, float
                 load.run(rate, seconds)
                 if heavy_ids:
                     running = sum(
-                        client.get(f"/v1/jobs/{j}").json()["status"] == "running"
-                        for j in heavy_ids
+                        client.get(f"/v1/jobs/{j}").json()["status"] == "running" for j in heavy_ids
                     )
                     print(f"busy phase ended with {running} heavy job(s) running", flush=True)
                     for job_id in heavy_ids:

@@ -40,9 +40,10 @@ def parse(ts: str) -> float:
 
 
 def measure(backend: str, latency_jobs: int, burst: int) -> dict[str, float]:
-    with tempfile.TemporaryDirectory() as tmp, deployment(
-        backend, Path(tmp), workers=2, env={"DEXLAB_POLL_SECONDS": "0.05"}
-    ) as dep:
+    with (
+        tempfile.TemporaryDirectory() as tmp,
+        deployment(backend, Path(tmp), workers=2, env={"DEXLAB_POLL_SECONDS": "0.05"}) as dep,
+    ):
         client = dep.client
         for n in range(3):  # warm-up: imports in the worker processes
             wait_terminal(client, client.post(URL, json={"inputs": trivial(n)}).json()["jobID"])
@@ -52,8 +53,10 @@ def measure(backend: str, latency_jobs: int, burst: int) -> dict[str, float]:
             done = wait_terminal(client, job_id)
             latencies.append(parse(done["started"]) - parse(done["created"]))
         start = time.perf_counter()
-        ids = [client.post(URL, json={"inputs": trivial(1000 + n)}).json()["jobID"]
-               for n in range(burst)]
+        ids = [
+            client.post(URL, json={"inputs": trivial(1000 + n)}).json()["jobID"]
+            for n in range(burst)
+        ]
         finals = [wait_terminal(client, job_id, timeout=600) for job_id in ids]
         elapsed = time.perf_counter() - start
         assert all(f["status"] == "successful" for f in finals)
@@ -72,15 +75,21 @@ def main() -> None:
     args = parser.parse_args()
     rows = {b: measure(b, args.latency_jobs, args.burst) for b in args.backends}
     base = rows.get("embedded")
-    print(f"\nTrivial jobs, 2 worker processes each; {args.latency_jobs} latency samples, "
-          f"burst of {args.burst}.")
-    print(f"{'backend':<18}{'submit->start median':>22}{'p90':>10}{'throughput':>14}"
-          f"{'latency vs embedded':>22}{'throughput vs embedded':>25}")
+    print(
+        f"\nTrivial jobs, 2 worker processes each; {args.latency_jobs} latency samples, "
+        f"burst of {args.burst}."
+    )
+    print(
+        f"{'backend':<18}{'submit->start median':>22}{'p90':>10}{'throughput':>14}"
+        f"{'latency vs embedded':>22}{'throughput vs embedded':>25}"
+    )
     for name, row in rows.items():
         lat_ratio = row["latency_median_ms"] / base["latency_median_ms"] if base else float("nan")
         thr_ratio = row["throughput_jobs_s"] / base["throughput_jobs_s"] if base else float("nan")
-        print(f"{name:<18}{row['latency_median_ms']:>19.1f} ms{row['latency_p90_ms']:>7.1f} ms"
-              f"{row['throughput_jobs_s']:>9.1f} /s{lat_ratio:>21.2f}x{thr_ratio:>24.2f}x")
+        print(
+            f"{name:<18}{row['latency_median_ms']:>19.1f} ms{row['latency_p90_ms']:>7.1f} ms"
+            f"{row['throughput_jobs_s']:>9.1f} /s{lat_ratio:>21.2f}x{thr_ratio:>24.2f}x"
+        )
 
 
 if __name__ == "__main__":

@@ -57,8 +57,6 @@ SWEEP_DELTAS = np.round(np.arange(1.0, 2.5 + 1e-9, 0.01), 10)
 DEFAULT_COLUMNS = inspect.signature(design_sweep).parameters["columns"].default
 
 
-
-
 def square_grid(arch: Architecture, points_per_axis: int) -> tuple[np.ndarray, np.ndarray]:
     reach = arch.l1 + arch.l2
     axis = np.linspace(-reach, reach, points_per_axis)

@@ -49,8 +49,6 @@ def square_grid(points_per_axis: int) -> np.ndarray:
     return np.stack([xs, ys], axis=-1)
 
 
-
-
 def naive_seconds_per_point(
     points: np.ndarray, step: float, limits: list[list[float]] | None
 ) -> float:

@@ -39,8 +39,6 @@ TABLE_1 = SpmDesign.from_degrees(60.0, 90.0, 90.0)
 CONE_120 = Workspace(math.radians(60.0))
 
 
-
-
 def compare_indices(samples: np.ndarray, repeat: int) -> None:
     sample_set = SampleSet.from_samples(samples)
     fast = best_time(lambda: workspace_indices(TABLE_1, samples), repeat)

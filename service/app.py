@@ -95,8 +95,11 @@ def create_app(settings: ServiceSettings | None = None) -> FastAPI:
         dispatcher = make_dispatcher(settings, store)
         # With a broker, this process serves the API only; Celery workers run the jobs
         # and a sweeper here re-sends jobs whose worker died.
-        pool = WorkerPool(settings, store) if settings.workers > 0 and not settings.broker_url \
+        pool = (
+            WorkerPool(settings, store)
+            if settings.workers > 0 and not settings.broker_url
             else None
+        )
         sweeper = _start_sweeper(settings, store, dispatcher)
         app.state.settings = settings
         app.state.store = store
@@ -140,8 +143,11 @@ def create_app(settings: ServiceSettings | None = None) -> FastAPI:
             *family_tag_documents(registry),
             {"name": "jobs", "description": "Status, results, artifacts, dismissal."},
             {"name": "health", "description": "Liveness and readiness probes; metrics."},
-            {"name": "OGC API – Processes", "description": "OGC API - Processes - Part 1: "
-             "Core at /ogc/: the same processes and jobs in the standard's documents."},
+            {
+                "name": "OGC API – Processes",
+                "description": "OGC API - Processes - Part 1: "
+                "Core at /ogc/: the same processes and jobs in the standard's documents.",
+            },
             {"name": "meta", "description": "The landing page and problem types."},
         ],
     )
@@ -191,7 +197,13 @@ def create_app(settings: ServiceSettings | None = None) -> FastAPI:
         if slug not in PROBLEM_TYPES:
             return problem_response("not-found", detail=f"No problem type {slug!r}.")
         status, title, description = PROBLEM_TYPES[slug]
-        return JSONResponse({"type": f"/problems/{slug}", "title": title, "status": status,
-                             "description": description})
+        return JSONResponse(
+            {
+                "type": f"/problems/{slug}",
+                "title": title,
+                "status": status,
+                "description": description,
+            }
+        )
 
     return app

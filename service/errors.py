@@ -122,8 +122,7 @@ def problem_response(
     if instance:
         body["instance"] = instance
     body.update(extra)
-    return JSONResponse(body, status_code=body["status"], media_type=PROBLEM_JSON,
-                        headers=headers)
+    return JSONResponse(body, status_code=body["status"], media_type=PROBLEM_JSON, headers=headers)
 
 
 def _request_errors(exc: RequestValidationError) -> list[dict[str, Any]]:

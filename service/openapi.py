@@ -84,6 +84,7 @@ ROUTE_PROBLEMS: dict[tuple[str, str], tuple[int, ...]] = {
     ("get", "/methods/{slug}"): (404,),
 }
 
+
 class _RetentionMember(BaseModel):
     """The execute body's ``retention_s``, beside ``inputs``."""
 
@@ -102,8 +103,7 @@ _DESCRIPTIONS = {
     "(`WWW-Authenticate: Bearer`).",
     403: "Refused: a parameter only an admin key may use.",
     404: "No such process, job or artifact, or the result is not ready yet.",
-    410: "The job was dismissed, or it expired (its retention ended): its results "
-    "are gone.",
+    410: "The job was dismissed, or it expired (its retention ended): its results are gone.",
     429: "A quota of this API key: too many jobs queued or submissions this minute "
     "(`limit` names the setting; `Retry-After`).",
     413: "The request body is larger than the service accepts.",

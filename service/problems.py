@@ -6,91 +6,112 @@ __all__ = ["PROBLEM_TYPES", "problem_type_uri"]
 
 PROBLEM_TYPES: dict[str, tuple[int, str, str]] = {
     "invalid-inputs": (
-        422, "Invalid inputs",
+        422,
+        "Invalid inputs",
         "The process inputs failed validation; `errors` names every bad field.",
     ),
     "invalid-request": (
-        422, "Invalid request",
+        422,
+        "Invalid request",
         "The request body, a query parameter or a header is malformed; `errors` names it.",
     ),
     "malformed-request": (
-        400, "Malformed request",
+        400,
+        "Malformed request",
         "The request body is not valid UTF-8 JSON, or nests too deeply; `detail` says where.",
     ),
     "request-too-large": (
-        413, "Request too large",
+        413,
+        "Request too large",
         "The request body is larger than the service accepts (`max_body_bytes`).",
     ),
     "cost-limit-exceeded": (
-        422, "Cost limit exceeded",
+        422,
+        "Cost limit exceeded",
         "The requested work exceeds the process's documented cost limit "
         "(see `limits` at GET /v1/processes/{processID}); nothing was queued.",
     ),
     "idempotency-conflict": (
-        422, "Idempotency-Key reused",
+        422,
+        "Idempotency-Key reused",
         "The Idempotency-Key was used before with a different request body.",
     ),
     "no-such-process": (404, "No such process", "No process has this ID."),
     "no-such-job": (404, "No such job", "No job has this ID."),
     "no-such-artifact": (404, "No such artifact", "The job has no artifact with this name."),
     "result-not-ready": (
-        404, "Result not ready", "The job has not finished yet; poll GET /v1/jobs/{jobID}.",
+        404,
+        "Result not ready",
+        "The job has not finished yet; poll GET /v1/jobs/{jobID}.",
     ),
     "job-dismissed": (410, "Job dismissed", "The job was dismissed; its results are gone."),
     "job-expired": (
-        410, "Job expired",
+        410,
+        "Job expired",
         "The job finished longer ago than it was kept (its `expires`: DEXLAB_RESULT_TTL_S "
         "or the request's `retention_s`), and it and its results were deleted.  An "
         "expired job answers this for as long as it was kept (at most a day), then 404.",
     ),
     "quota-exceeded": (
-        429, "Quota exceeded",
+        429,
+        "Quota exceeded",
         "This API key has as many jobs queued as it may (`limit` names the setting, "
         "`allowed` its value); submit again after `Retry-After` seconds, once one has "
         "started.",
     ),
     "rate-limited": (
-        429, "Too many submissions",
+        429,
+        "Too many submissions",
         "This API key submitted as many jobs this minute as it may (`limit`: "
         "DEXLAB_SUBMIT_RATE_PER_MIN, `allowed`: its value); `Retry-After` says when the "
         "next is allowed.",
     ),
     "queue-full": (
-        503, "Queue full",
+        503,
+        "Queue full",
         "The whole queue holds as many jobs as the service takes (`limit`: "
         "DEXLAB_MAX_QUEUED); submit again after `Retry-After` seconds.",
     ),
     "job-failed": (500, "Job failed", "The job failed; `detail` says why."),
     "job-error": (500, "The job raised an error", "The job's code raised an exception."),
     "time-limit-exceeded": (
-        500, "Time limit exceeded", "The job ran longer than its time limit and was stopped.",
+        500,
+        "Time limit exceeded",
+        "The job ran longer than its time limit and was stopped.",
     ),
     "worker-lost": (
-        500, "Worker lost", "The worker running the job died on every allowed attempt.",
+        500,
+        "Worker lost",
+        "The worker running the job died on every allowed attempt.",
     ),
     "store-unavailable": (
-        503, "Job store unavailable",
+        503,
+        "Job store unavailable",
         "The job store does not answer or stays locked; retry after `Retry-After` seconds.",
     ),
     "storage-full": (
-        507, "Storage full",
+        507,
+        "Storage full",
         "The job store's disk is full: nothing more can be stored until space is freed.",
     ),
     "storage-error": (
-        503, "Storage error",
+        503,
+        "Storage error",
         "The job store cannot read or write its files (corrupt, read-only or an I/O error).",
     ),
     "not-ready": (503, "Not ready", "The store or the worker pool is not up."),
     "not-found": (404, "Not found", "No resource at this path."),
     "unauthorized": (
-        401, "Unauthorized",
+        401,
+        "Unauthorized",
         "This service has API keys and the request brought none that is valid: send "
         "`Authorization: Bearer <secret>` (a browser logs in at /login).  A wrong or "
         "revoked key, or an ended session, is refused the same way; `WWW-Authenticate` "
         "names the scheme.",
     ),
     "forbidden": (
-        403, "Forbidden",
+        403,
+        "Forbidden",
         "The request is refused: a page's form posted from another site (the service's "
         "own pages send a same-origin Origin or Sec-Fetch-Site) or without its session's "
         "CSRF token, or a parameter only an admin key may use (`owner`).",

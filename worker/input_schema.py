@@ -30,9 +30,7 @@ def _deepest(error: ValidationError) -> ValidationError:
     the one deepest in the value (a branch that got further), and not a bare type
     mismatch with another alternative (``null``) where there is a choice."""
     while error.context:
-        error = max(
-            error.context, key=lambda e: (len(e.absolute_path), e.validator != "type")
-        )
+        error = max(error.context, key=lambda e: (len(e.absolute_path), e.validator != "type"))
     return error
 
 

@@ -39,8 +39,7 @@ FAMILY_PAPERS: dict[str, str] = {
 FAMILY_TAGS: dict[str, tuple[str, str]] = {
     "planar_serial": (
         "Three-link planar serial arms",
-        "Patel & Sobh: synthesis from task points or a trajectory, dexterity maps, "
-        "joint limits.",
+        "Patel & Sobh: synthesis from task points or a trajectory, dexterity maps, joint limits.",
     ),
     "planar_parallel": (
         "2-DOF planar parallel robots",

@@ -87,8 +87,11 @@ class Deployment:
     def _spawn(self, args: list[str], log_name: str) -> subprocess.Popen[bytes]:
         with (self.data_dir / log_name).open("ab") as log:
             return subprocess.Popen(
-                [*dexlab_command(), *args], stdout=log, stderr=subprocess.STDOUT,
-                env={**os.environ, **self.env}, start_new_session=True,
+                [*dexlab_command(), *args],
+                stdout=log,
+                stderr=subprocess.STDOUT,
+                env={**os.environ, **self.env},
+                start_new_session=True,
             )
 
     def start_api(self, local_pool: int = 0) -> None:
@@ -96,8 +99,16 @@ class Deployment:
         port = free_port()
         self.local_pool = local_pool if self.backend == "embedded" else 0
         self.api = self._spawn(
-            ["serve", "--port", str(port), "--data-dir", str(self.data_dir),
-             "--workers", str(self.local_pool)], "api.log",
+            [
+                "serve",
+                "--port",
+                str(port),
+                "--data-dir",
+                str(self.data_dir),
+                "--workers",
+                str(self.local_pool),
+            ],
+            "api.log",
         )
         self.base_url = f"http://127.0.0.1:{port}"
         self.client.close()

@@ -84,8 +84,10 @@ async def test_invalid_inputs_name_the_field(asgi_client: httpx.AsyncClient) -> 
         ({"links": [15, 14]}, "inputs.links"),
         ({"links": [15, 14, 8], "colour": "red"}, "inputs.colour"),
         ({"links": [15, 14, 8], "grid": {"points_per_axis": 5000}}, "inputs.grid.points_per_axis"),
-        ({"links": [15, 14, 8], "joint_limits_deg": [[0, 10], [20, 10], [0, 1]]},
-         "inputs.joint_limits_deg"),
+        (
+            {"links": [15, 14, 8], "joint_limits_deg": [[0, 10], [20, 10], [0, 1]]},
+            "inputs.joint_limits_deg",
+        ),
     ]
     for inputs, field in cases:
         r = await asgi_client.post(
@@ -109,7 +111,8 @@ async def test_malformed_body_is_a_problem(asgi_client: httpx.AsyncClient) -> No
     assert r.status_code == 422 and r.headers["content-type"] == PROBLEM
     assert {e["field"] for e in r.json()["errors"]} >= {"inputs", "links"}
     r = await asgi_client.post(
-        "/v1/processes/planar3r-dexterity-map/execution", content=b"{not json",
+        "/v1/processes/planar3r-dexterity-map/execution",
+        content=b"{not json",
         headers={"content-type": "application/json"},
     )
     assert r.status_code == 400 and r.headers["content-type"] == PROBLEM
@@ -169,9 +172,12 @@ async def test_unknown_things_are_404_problems(asgi_client: httpx.AsyncClient) -
 async def test_results_not_ready_while_pending(asgi_client: httpx.AsyncClient) -> None:
     # Two jobs: the second waits behind the first in a one-process pool.
     url = "/v1/processes/planar3r-dexterity-map/execution"
-    slow = {"links": [15, 14, 8], "grid": {"points_per_axis": 101},
-            "joint_limits_deg": [[-150, 150], [-150, 150], [-175, 175]],
-            "orientation_step_deg": 2}
+    slow = {
+        "links": [15, 14, 8],
+        "grid": {"points_per_axis": 101},
+        "joint_limits_deg": [[-150, 150], [-150, 150], [-175, 175]],
+        "orientation_step_deg": 2,
+    }
     first = (await asgi_client.post(url, json={"inputs": slow})).json()["jobID"]
     second = (await asgi_client.post(url, json={"inputs": SMALL_MAP})).json()["jobID"]
     r = await asgi_client.get(f"/v1/jobs/{second}/results")
@@ -195,8 +201,9 @@ async def test_listing_paginates_and_filters(asgi_client: httpx.AsyncClient) -> 
     assert [j["jobID"] for j in page["jobs"]] == ids[::-1][:2]
     seen = [j["jobID"] for j in page["jobs"]]
     while page["next_cursor"]:
-        page = (await asgi_client.get(
-            "/v1/jobs", params={"limit": 2, "cursor": page["next_cursor"]})).json()
+        page = (
+            await asgi_client.get("/v1/jobs", params={"limit": 2, "cursor": page["next_cursor"]})
+        ).json()
         seen += [j["jobID"] for j in page["jobs"]]
     assert seen == ids[::-1]
     none = (await asgi_client.get("/v1/jobs", params={"processID": "planar3r-synthesis"})).json()
@@ -239,8 +246,9 @@ async def test_prefer_wait_answers_small_jobs_synchronously(
     # The same job stays retrievable like any other.
     assert (await asgi_client.get(f"/v1/jobs/{job_id}")).json()["status"] == "successful"
     # respond-async wins; work above the synchronous limit is queued as usual.
-    r = await asgi_client.post(url, json={"inputs": SMALL_MAP},
-                               headers={"Prefer": "respond-async, wait=60"})
+    r = await asgi_client.post(
+        url, json={"inputs": SMALL_MAP}, headers={"Prefer": "respond-async, wait=60"}
+    )
     assert r.status_code == 201
     big = {"links": [15, 14, 8], "grid": {"points_per_axis": 401}}
     r = await asgi_client.post(url, json={"inputs": big}, headers={"Prefer": "wait=5"})
@@ -273,12 +281,14 @@ async def test_invalid_chains_are_422_naming_the_loop_or_link(
         ("chain-parallelism", broken(open_loop), "inputs.chains[0].loops[1]", "does not close"),
         ("chain-parallelism", broken(unknown_link), "inputs.chains[1].loops[2]", "'9'"),
         ("chain-parallelism", broken(other_mobility), "inputs.chains", "degrees of freedom"),
-        ("fourbar-grashof", {"lengths": [1, 1, 1, 10], "ground": 0}, "inputs.lengths",
-         "close"),
+        ("fourbar-grashof", {"lengths": [1, 1, 1, 10], "ground": 0}, "inputs.lengths", "close"),
     ]
     for process_id, inputs, field, words in cases:
-        r = await asgi_client.post(f"/v1/processes/{process_id}/execution",
-                                   json={"inputs": inputs}, headers={"Prefer": "wait=10"})
+        r = await asgi_client.post(
+            f"/v1/processes/{process_id}/execution",
+            json={"inputs": inputs},
+            headers={"Prefer": "wait=10"},
+        )
         assert r.status_code == 422, (field, r.text)
         assert r.headers["content-type"] == PROBLEM
         body = r.json()

@@ -46,8 +46,9 @@ def test_worked_example_runs_to_success(embedded: Deployment, process_id: str, i
     r = client.post(f"/v1/processes/{process_id}/execution", json={"inputs": example["inputs"]})
     assert r.status_code == 201, r.text
     job_id = r.json()["jobID"]
-    status = wait_for(client, job_id, lambda d: d["status"] in {"successful", "failed"},
-                      timeout=300)
+    status = wait_for(
+        client, job_id, lambda d: d["status"] in {"successful", "failed"}, timeout=300
+    )
     assert status["status"] == "successful", status
     results = client.get(f"/v1/jobs/{job_id}/results").json()
     assert results["result"], results
@@ -68,16 +69,23 @@ def test_quick_processes_answer_synchronously(embedded: Deployment, process_id: 
     definition = default_registry().get(process_id)
     assert definition is not None
     cheap = [
-        ex for ex in definition.examples
+        ex
+        for ex in definition.examples
         if definition.cost(definition.inputs_model.model_validate(ex.inputs))
         <= definition.sync_cost_limit
     ]
     if not cheap:
         pytest.fail(f"{process_id} allows synchronous execution but no example fits it")
-    inputs = {**cheap[0].inputs, "plots": False} if "plots" in doc["inputs"]["properties"] \
+    inputs = (
+        {**cheap[0].inputs, "plots": False}
+        if "plots" in doc["inputs"]["properties"]
         else cheap[0].inputs
-    r = client.post(f"/v1/processes/{process_id}/execution", json={"inputs": inputs},
-                    headers={"Prefer": "wait=60"})
+    )
+    r = client.post(
+        f"/v1/processes/{process_id}/execution",
+        json={"inputs": inputs},
+        headers={"Prefer": "wait=60"},
+    )
     assert r.status_code == 200, r.text
     assert r.headers["Preference-Applied"] == "wait=60"
     body = r.json()

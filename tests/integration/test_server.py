@@ -74,8 +74,9 @@ def running_with_progress(minimum: float) -> Any:
 def test_paper_example_runs_to_success_with_downloadable_plots(server: Deployment) -> None:
     client = server.client
     example = client.get("/v1/processes/planar3r-synthesis").json()["examples"][0]
-    r = client.post("/v1/processes/planar3r-synthesis/execution",
-                    json={"inputs": example["inputs"]})
+    r = client.post(
+        "/v1/processes/planar3r-synthesis/execution", json={"inputs": example["inputs"]}
+    )
     assert r.status_code == 201, r.text
     status = wait_terminal(client, r.json()["jobID"])
     assert status["status"] == "successful", status
@@ -158,12 +159,17 @@ def test_job_whose_worker_keeps_dying_fails_after_bounded_attempts(
     strict_server: Deployment,
 ) -> None:
     client = strict_server.client
-    slow = {"links": [15, 14, 8], "joint_limits_deg": PAPER_LIMITS,
-            "grid": {"points_per_axis": 301}, "orientation_step_deg": 1}
+    slow = {
+        "links": [15, 14, 8],
+        "joint_limits_deg": PAPER_LIMITS,
+        "grid": {"points_per_axis": 301},
+        "orientation_step_deg": 1,
+    }
     job_id = client.post(MAP_URL, json={"inputs": slow}).json()["jobID"]
     for attempt in (1, 2):
-        status = wait_for(client, job_id,
-                          lambda d, a=attempt: d["status"] == "running" and d["attempts"] == a)
+        status = wait_for(
+            client, job_id, lambda d, a=attempt: d["status"] == "running" and d["attempts"] == a
+        )
         victim = pid_of(status)
         os.kill(victim, signal.SIGKILL)
         wait_dead(victim)
@@ -211,11 +217,16 @@ def test_two_workers_share_a_batch(backend: str, tmp_path: Path) -> None:
     """Two `dexlab worker`s on one store (and broker): every job runs once, both work."""
     with deployment(backend, tmp_path, workers=0, worker_processes=2) as dep:
         client = dep.client
-        slow_tiny = {"links": [15, 14, 8], "joint_limits_deg": PAPER_LIMITS,
-                     "grid": {"points_per_axis": 41}, "orientation_step_deg": 2}
+        slow_tiny = {
+            "links": [15, 14, 8],
+            "joint_limits_deg": PAPER_LIMITS,
+            "grid": {"points_per_axis": 41},
+            "orientation_step_deg": 2,
+        }
         ids = [
-            client.post(MAP_URL, json={"inputs": {**slow_tiny, "links": [15, 14, 8 + n / 10]}})
-            .json()["jobID"]
+            client.post(
+                MAP_URL, json={"inputs": {**slow_tiny, "links": [15, 14, 8 + n / 10]}}
+            ).json()["jobID"]
             for n in range(8)
         ]
         # Which processes belong to which worker, sampled while the jobs run: a Celery

@@ -46,9 +46,7 @@ def figure_artifacts(fig: Figure, stem: str, title: str) -> tuple[Artifact, Arti
     with np.errstate(over="ignore", under="ignore", invalid="ignore"):
         fig.savefig(png, format="png", dpi=RASTER_DPI, metadata={"Title": title})
         with rc_context({"svg.hashsalt": f"dexlab:{stem}"}):
-            fig.savefig(
-                svg, format="svg", dpi=RASTER_DPI, metadata={"Date": None, "Title": title}
-            )
+            fig.savefig(svg, format="svg", dpi=RASTER_DPI, metadata={"Date": None, "Title": title})
     return (
         Artifact(name=f"{stem}.png", media_type="image/png", data=png.getvalue(), title=title),
         Artifact(name=f"{stem}.svg", media_type="image/svg+xml", data=svg.getvalue(), title=title),

@@ -113,8 +113,9 @@ class ArtifactIndex:
             if not self._put_artifact_data(
                 job_id, attempt, artifact.name, artifact.data, lease_token=lease_token
             ):
-                log.warning("job %s: attempt %d lost its lease while storing results",
-                            job_id, attempt)
+                log.warning(
+                    "job %s: attempt %d lost its lease while storing results", job_id, attempt
+                )
                 self._discard_attempt(job_id, attempt)
                 return False
         now = time.time()

@@ -33,9 +33,7 @@ def test_version_prints_the_installed_version() -> None:
         (["nosuchcommand"], "No such command"),
     ],
 )
-def test_a_usage_error_exits_2_with_one_line_and_no_traceback(
-    args: list[str], phrase: str
-) -> None:
+def test_a_usage_error_exits_2_with_one_line_and_no_traceback(args: list[str], phrase: str) -> None:
     done = run(*args)
     assert done.returncode == 2
     lines = done.stderr.strip().splitlines()

@@ -45,18 +45,32 @@ def run_square_against_a_paper(inputs: SquareInputs, ctx: JobContext) -> JobOutc
 
 
 def registry() -> ProcessRegistry:
-    return ProcessRegistry((
-        ProcessDefinition(
-            id="square", title="Square", description="x squared", inputs_model=SquareInputs,
-            run=run_square, examples=(), outputs={"square": "x**2"}, cost=lambda _: 1,
-            cost_limit=10,
-        ),
-        ProcessDefinition(
-            id="paper-square", title="Square, against a paper", description="x squared",
-            inputs_model=SquareInputs, run=run_square_against_a_paper, examples=(),
-            outputs={"square": "x**2"}, cost=lambda _: 1, cost_limit=10,
-        ),
-    ))
+    return ProcessRegistry(
+        (
+            ProcessDefinition(
+                id="square",
+                title="Square",
+                description="x squared",
+                inputs_model=SquareInputs,
+                run=run_square,
+                examples=(),
+                outputs={"square": "x**2"},
+                cost=lambda _: 1,
+                cost_limit=10,
+            ),
+            ProcessDefinition(
+                id="paper-square",
+                title="Square, against a paper",
+                description="x squared",
+                inputs_model=SquareInputs,
+                run=run_square_against_a_paper,
+                examples=(),
+                outputs={"square": "x**2"},
+                cost=lambda _: 1,
+                cost_limit=10,
+            ),
+        )
+    )
 
 
 @pytest.fixture

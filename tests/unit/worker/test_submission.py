@@ -31,19 +31,34 @@ def run(inputs: Inputs, ctx: JobContext) -> JobOutcome:
     return JobOutcome({"ok": True})
 
 
-REGISTRY = ProcessRegistry((
-    ProcessDefinition(
-        id="toy", title="Toy", description="", inputs_model=Inputs, run=run, examples=(),
-        outputs={}, cost=lambda i: int(sum(i.sizes)), cost_limit=100, time_limit_s=50,
-    ),
-))
+REGISTRY = ProcessRegistry(
+    (
+        ProcessDefinition(
+            id="toy",
+            title="Toy",
+            description="",
+            inputs_model=Inputs,
+            run=run,
+            examples=(),
+            outputs={},
+            cost=lambda i: int(sum(i.sizes)),
+            cost_limit=100,
+            time_limit_s=50,
+        ),
+    )
+)
 
 
 def test_field_errors_use_dotted_paths_with_indices(tmp_path: Path) -> None:
     store = open_store(f"sqlite:///{tmp_path / 'j.db'}")
     with pytest.raises(InvalidInputs) as info:
-        submit(store, REGISTRY, WorkerSettings(), "toy",
-               {"sizes": [1, "x"], "inner": {"n": 0}, "Extra": 1})
+        submit(
+            store,
+            REGISTRY,
+            WorkerSettings(),
+            "toy",
+            {"sizes": [1, "x"], "inner": {"n": 0}, "Extra": 1},
+        )
     fields = {e["field"] for e in info.value.errors}
     assert fields == {"inputs.sizes[1]", "inputs.inner.n", "inputs.Extra"}
     assert info.value.detail.startswith("Invalid value for 'inputs.")
@@ -66,8 +81,13 @@ def test_unknown_process(tmp_path: Path) -> None:
 
 def test_time_limit_is_capped_by_settings(tmp_path: Path) -> None:
     store = open_store(f"sqlite:///{tmp_path / 'j.db'}")
-    job, _ = submit(store, REGISTRY, WorkerSettings(max_time_limit_s=7), "toy",
-                    {"sizes": [1], "inner": {"n": 1}})
+    job, _ = submit(
+        store,
+        REGISTRY,
+        WorkerSettings(max_time_limit_s=7),
+        "toy",
+        {"sizes": [1], "inner": {"n": 1}},
+    )
     assert job.time_limit_s == 7
     job, _ = submit(store, REGISTRY, WorkerSettings(), "toy", {"sizes": [1], "inner": {"n": 1}})
     assert job.time_limit_s == 50
@@ -88,8 +108,15 @@ def test_request_hash_ignores_key_order_but_not_values() -> None:
         ("fourbar-grashof", {"lengths": ["30", 17, 18, 25], "ground": 0}, "inputs.lengths[0]"),
         (
             "planar3r-dexterity-map",
-            {"links": [15, 14, 8], "trajectory": {"x_start": 14.0, "x_end": False,
-                                                  "polynomial": [1, 2], "samples": 10}},
+            {
+                "links": [15, 14, 8],
+                "trajectory": {
+                    "x_start": 14.0,
+                    "x_end": False,
+                    "polynomial": [1, 2],
+                    "samples": 10,
+                },
+            },
             "inputs.trajectory.x_end",
         ),
     ],
@@ -123,11 +150,17 @@ def test_cheapness_and_retention_are_recorded_at_submission(tmp_path: Path) -> N
     job, _ = submit(store, registry, settings, "fourbar-grashof", small)
     big = {"links": [15, 14, 8], "grid": {"points_per_axis": 201}}
     heavy, _ = submit(store, registry, settings, "planar3r-dexterity-map", big, retention_s=60)
-    row = store._one(store._conn(), "SELECT cheap, retention_s FROM jobs WHERE job_id = ?",  # type: ignore[attr-defined]
-                     (job.job_id,))
+    row = store._one(
+        store._conn(),
+        "SELECT cheap, retention_s FROM jobs WHERE job_id = ?",  # type: ignore[attr-defined]
+        (job.job_id,),
+    )
     assert row["cheap"] == 1 and row["retention_s"] == 3600
-    row = store._one(store._conn(), "SELECT cheap, retention_s FROM jobs WHERE job_id = ?",  # type: ignore[attr-defined]
-                     (heavy.job_id,))
+    row = store._one(
+        store._conn(),
+        "SELECT cheap, retention_s FROM jobs WHERE job_id = ?",  # type: ignore[attr-defined]
+        (heavy.job_id,),
+    )
     assert row["cheap"] == 0 and row["retention_s"] == 60
 
 

@@ -53,4 +53,3 @@ def create_celery_app(settings: WorkerSettings) -> Celery:
             raise self.retry(countdown=retry_after)
 
     return app
-

@@ -157,4 +157,7 @@ OPTIMISATION = ProcessDefinition(
 )
 
 #: This family's processes, in the order GET /v1/processes lists them.
-PROCESSES = (CONDITIONING_MAP, OPTIMISATION,)
+PROCESSES = (
+    CONDITIONING_MAP,
+    OPTIMISATION,
+)

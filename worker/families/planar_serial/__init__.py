@@ -150,4 +150,7 @@ SYNTHESIS = ProcessDefinition(
 )
 
 #: This family's processes, in the order GET /v1/processes lists them.
-PROCESSES = (DEXTERITY_MAP, SYNTHESIS,)
+PROCESSES = (
+    DEXTERITY_MAP,
+    SYNTHESIS,
+)

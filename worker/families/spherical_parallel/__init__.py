@@ -265,4 +265,8 @@ OPTIMISATION = ProcessDefinition(
 )
 
 #: This family's processes, in the order GET /v1/processes lists them.
-PROCESSES = (CONDITIONING_MAP, DESIGN_SPACE, OPTIMISATION,)
+PROCESSES = (
+    CONDITIONING_MAP,
+    DESIGN_SPACE,
+    OPTIMISATION,
+)

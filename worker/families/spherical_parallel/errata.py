@@ -78,8 +78,10 @@ def paper_value_note(paper: PaperDesign, indices: dict[str, Any]) -> str:
     """'Table N prints P; that is mean(1/kappa^2) (eq 28): X here ...'."""
     mean_square, rms = indices["mean_square_inverse_condition"], indices["rms_inverse_condition"]
     if mean_square is None:
-        return (f"{paper.label} prints {paper.printed:g} for {_design_text(paper)}; on this "
-                "workspace and branch the design misses some samples, so it is not scored.")
+        return (
+            f"{paper.label} prints {paper.printed:g} for {_design_text(paper)}; on this "
+            "workspace and branch the design misses some samples, so it is not scored."
+        )
     return (
         f"{paper.label} prints 'C_n' = {paper.printed:g} for {_design_text(paper)}: that is "
         f"mean(1/kappa^2) (eq 28), {mean_square:.4f} here, not the root mean square of eq 25 "

@@ -88,35 +88,58 @@ def _map_example(design: PaperDesign, workspace: dict[str, Any], text: str) -> P
 
 
 CONDITIONING_MAP_EXAMPLES = (
-    _map_example(TABLE_1, EXAMPLE_1_WORKSPACE, "Example I's optimum over a 120° cone with a "
-                 "full turn: mean(1/kappa^2) 0.2974 on the default 144 samples (printed 0.28); "
-                 "1/kappa reaches 0 on the workspace boundary."),
-    _map_example(TABLE_2_NUMERICAL, EXAMPLE_2_WORKSPACE, "Example II's numerical design "
-                 "over a 90° cone: the default sweeps are the paper's Fig. 7 (psi1 = 35°, "
-                 "psi2 = 15, 30, 45)."),
-    _map_example(TABLE_2_GRAPHIC, EXAMPLE_2_WORKSPACE, "The Asada-Granito graphic design "
-                 "compared in Table 2 and Fig. 7 (printed 0.67; 0.616 on the default samples)."),
-    _map_example(TABLE_3, EXAMPLE_3_WORKSPACE, "Example III's printed optimum, identical "
-                 "platforms, 90° cone with torsion [-15, 15] (printed 0.585)."),
+    _map_example(
+        TABLE_1,
+        EXAMPLE_1_WORKSPACE,
+        "Example I's optimum over a 120° cone with a "
+        "full turn: mean(1/kappa^2) 0.2974 on the default 144 samples (printed 0.28); "
+        "1/kappa reaches 0 on the workspace boundary.",
+    ),
+    _map_example(
+        TABLE_2_NUMERICAL,
+        EXAMPLE_2_WORKSPACE,
+        "Example II's numerical design "
+        "over a 90° cone: the default sweeps are the paper's Fig. 7 (psi1 = 35°, "
+        "psi2 = 15, 30, 45).",
+    ),
+    _map_example(
+        TABLE_2_GRAPHIC,
+        EXAMPLE_2_WORKSPACE,
+        "The Asada-Granito graphic design "
+        "compared in Table 2 and Fig. 7 (printed 0.67; 0.616 on the default samples).",
+    ),
+    _map_example(
+        TABLE_3,
+        EXAMPLE_3_WORKSPACE,
+        "Example III's printed optimum, identical "
+        "platforms, 90° cone with torsion [-15, 15] (printed 0.585).",
+    ),
 )
 
 DESIGN_SPACE_EXAMPLES = (
     ProcessExample(
         title="Figs 5-6: the active ball joint in a 120° cone, beta = 60, 75, 90",
-        inputs=MappingProxyType({
-            "workspace": EXAMPLE_1_WORKSPACE, "gamma_deg": 0.0,
-            "beta_deg": list(FIG_5_BETAS_DEG), "index_map": {"beta_deg": 75.0},
-        }),
+        inputs=MappingProxyType(
+            {
+                "workspace": EXAMPLE_1_WORKSPACE,
+                "gamma_deg": 0.0,
+                "beta_deg": list(FIG_5_BETAS_DEG),
+                "index_map": {"beta_deg": 75.0},
+            }
+        ),
         description="beta = 75: f_min = -0.707, f_max = 0.966, |a1 - a2| <= 45°, "
         "|a1 + a2 - 180°| <= 15°; beta = 60 degenerates to the line a1 + a2 = 180°. The "
         "index map is the paper's Fig. 6, its two optima at (60, 105) and (120, 75).",
     ),
     ProcessExample(
         title="Example III's design space: identical platforms, beta from 20 to 70",
-        inputs=MappingProxyType({
-            "workspace": EXAMPLE_3_WORKSPACE, "identical_platforms": True,
-            "beta_deg": {"start": 20.0, "stop": 70.0, "step": 5.0},
-        }),
+        inputs=MappingProxyType(
+            {
+                "workspace": EXAMPLE_3_WORKSPACE,
+                "identical_platforms": True,
+                "beta_deg": {"start": 20.0, "stop": 70.0, "step": 5.0},
+            }
+        ),
         description="gamma = beta, a 90° cone with 30° of torsion: f over the continuous "
         "workspace by a grid search polished by projected Newton steps.",
     ),
@@ -143,10 +166,14 @@ OPTIMISATION_EXAMPLES = (
     ),
     ProcessExample(
         title="Table 3 with beta = gamma held at the printed 33.3",
-        inputs=MappingProxyType({
-            "workspace": EXAMPLE_3_WORKSPACE, "identical_platforms": True,
-            "free": ["alpha1", "alpha2"], "beta_deg": 33.3,
-        }),
+        inputs=MappingProxyType(
+            {
+                "workspace": EXAMPLE_3_WORKSPACE,
+                "identical_platforms": True,
+                "free": ["alpha1", "alpha2"],
+                "beta_deg": 33.3,
+            }
+        ),
         description="Only the link angles free: about (58.1, 113.4) or (121.9, 66.6), "
         "mean(1/kappa^2) 0.582, next to the printed design's 0.579.",
     ),

@@ -65,6 +65,5 @@ def test_time_limits_stay_below_the_brokers_redelivery_window() -> None:
     assert WorkerSettings(max_time_limit_s=60).time_limit_for(1800) == 60
     amqp = WorkerSettings(broker_url="amqp://guest:guest@127.0.0.1:5672//")
     assert amqp.time_limit_for(1800) == 0.9 * 1800
-    redis = WorkerSettings(broker_url="redis://127.0.0.1:6379/0",
-                           broker_visibility_timeout_s=1000)
+    redis = WorkerSettings(broker_url="redis://127.0.0.1:6379/0", broker_visibility_timeout_s=1000)
     assert redis.time_limit_for(1800) == 900

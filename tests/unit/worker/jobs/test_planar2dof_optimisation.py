@@ -207,8 +207,10 @@ def test_limit_optimum_and_window(
     inside = [row["eta"] for row in result["sweep"] if lo <= row["delta"] <= hi]
     assert min(inside) >= best["eta"] - 1e-3
     # the rectangle's least pressure angle is [beta] or just above (eq 17 at the max of 1/kappa0)
-    assert result["allowable_pressure_angle_deg"] <= best["min_pressure_angle_deg"] < (
-        result["allowable_pressure_angle_deg"] + 0.5
+    assert (
+        result["allowable_pressure_angle_deg"]
+        <= best["min_pressure_angle_deg"]
+        < (result["allowable_pressure_angle_deg"] + 0.5)
     )
 
 
@@ -342,9 +344,11 @@ def test_a_sweep_at_a_printed_limit_is_compared_with_table_i(ctx: RecordingConte
             "[1.65, 1.73], max at delta = 1.69") in notes  # fmt: skip
     assert "peaks at delta" not in notes  # the limit was given, not derived from [beta]
     assert "this sweep finds 0.7457 (delta = 1.67) to 0.8093 (delta = 1.01)" in notes
-    assert ("Table I prints h = 0.7322, H' = 1.3056, S = 2.0354, mean 1/kappa = 0.7444, "
-            "eta = 0.7453 at delta = 1.7; this job finds h = 0.7113, H' = 1.3297, "
-            "S = 2.0238, mean 1/kappa = 0.7459 (101 x 101 mesh), eta = 0.7456") in notes
+    assert (
+        "Table I prints h = 0.7322, H' = 1.3056, S = 2.0354, mean 1/kappa = 0.7444, "
+        "eta = 0.7453 at delta = 1.7; this job finds h = 0.7113, H' = 1.3297, "
+        "S = 2.0238, mean 1/kappa = 0.7459 (101 x 101 mesh), eta = 0.7456"
+    ) in notes
     assert "eq (17) + eq (7) give" not in notes and "0.4859" in notes
 
 
@@ -357,7 +361,8 @@ def test_sweep_artifacts(beta_30: tuple[JobOutcome, RecordingContext]) -> None:
     assert all(a.data for a in outcome.artifacts)
     texts = {
         "conditioning_limit": [
-            r"$\delta = l_2 / l_1$", r"conditioning limit $1/\kappa_0$ (eqs 17, 7)"
+            r"$\delta = l_2 / l_1$",
+            r"conditioning limit $1/\kappa_0$ (eqs 17, 7)",
         ],
         "design_indices": [r"$\delta = l_2 / l_1$", "performance indices"],
         "normalised_rectangle": [r"$\bar x = x / b$", r"$\bar y = (y + H') / b$"],

@@ -396,8 +396,12 @@ def test_plots_false_gives_data_files_only(ctx: RecordingContext) -> None:
     outcome = run_dexterity_map(spec, ctx)
     assert {a.name for a in outcome.artifacts} == {"dexterity_map.csv", "dexterity_map.npz"}
     synth = SynthesisSpec.model_validate(
-        {"task_points": [[16, 19], [18, 0]], "l3": 15, "grid": {"points_per_axis": 11},
-         "plots": False}
+        {
+            "task_points": [[16, 19], [18, 0]],
+            "l3": 15,
+            "grid": {"points_per_axis": 11},
+            "plots": False,
+        }
     )
     outcome = run_synthesis(synth, ctx)
     assert [a.name for a in outcome.artifacts] == ["synthesis_cases.npz"]

@@ -123,8 +123,10 @@ def test_fig_6_index_map(fig_5: tuple[JobOutcome, RecordingContext]) -> None:
     values = [b["indices"]["mean_square_inverse_condition"] for b in best]
     assert values[0] == pytest.approx(values[1], abs=1e-12)
     assert index_map["max"] == pytest.approx(values[0])
-    expected = sp.workspace_indices(sp.SpmDesign.from_degrees(60, 105, 75),
-                                    sp.orientation_samples(sp.Workspace(math.radians(60)))[0])
+    expected = sp.workspace_indices(
+        sp.SpmDesign.from_degrees(60, 105, 75),
+        sp.orientation_samples(sp.Workspace(math.radians(60)))[0],
+    )
     assert values[0] == pytest.approx(expected.mean_square_inverse_condition, abs=1e-4)
     assert values[0] < 0.2974  # below Table 1's optimum at beta = 90
 

@@ -327,11 +327,11 @@ def test_invalid_loops_are_named(loops: list[list[str]], where: tuple[Any, ...],
 
 def test_unused_link_and_unclosable_shapes() -> None:
     assert problems({**LINKS_4A, "8": 3.0}) == [(("links", "8"), "link '8' is in no loop")]
-    (where, message), = problems({**LINKS_4A, "2": 40.0})
+    ((where, message),) = problems({**LINKS_4A, "2": 40.0})
     assert where == ("loops", 0)
     assert message == ("the loop cannot close: side '2' (40) is not shorter than the sum of the "
                        "others (22)")  # fmt: skip
-    (where, message), = problems({**LINKS_4A, "1": {"a": 6.0, "b": 7.0, "c": 20.0}})
+    ((where, message),) = problems({**LINKS_4A, "1": {"a": 6.0, "b": 7.0, "c": 20.0}})
     assert where == ("links", "1")
     assert "cannot be a triangle: side 'c' (20) is not shorter than the sum of the others (13)" in (
         message

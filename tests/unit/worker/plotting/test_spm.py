@@ -62,8 +62,14 @@ def test_map_panels_colour_bar_and_legend() -> None:
     bar = next(ax for ax in fig.axes if ax not in panels)
     assert "1/\\kappa" in bar.get_ylabel()
     strings = svg_strings(figure_artifacts(fig, "map", "Map")[1].data)
-    for text in ("Map test", "no real inverse kinematics", "workspace samples at this torsion",
-                 "90°", "270°", "20°"):
+    for text in (
+        "Map test",
+        "no real inverse kinematics",
+        "workspace samples at this torsion",
+        "90°",
+        "270°",
+        "20°",
+    ):
         assert any(text in s for s in strings), text
 
 
@@ -167,8 +173,13 @@ def test_index_distribution() -> None:
                  d.DesignMarker(70, 100, "Table 1", "paper")],
     )  # fmt: skip
     strings = svg_strings(figure_artifacts(fig, "index", "Index")[1].data)
-    for text in ("Fig 6", "best", "Table 1", "misses part of the workspace",
-                 "edge of the design space (eq 19)"):
+    for text in (
+        "Fig 6",
+        "best",
+        "Table 1",
+        "misses part of the workspace",
+        "edge of the design space (eq 19)",
+    ):
         assert any(text in s for s in strings), text
     assert sum(1 for s in strings if s == "best") == 1  # one legend entry per label
 
@@ -179,8 +190,15 @@ def test_starts_figure() -> None:
     fig = st.optimisation_starts_figure(bars, best_index=0, title="Starts",
                                        references=[("printed 0.28", 0.28)])  # fmt: skip
     strings = svg_strings(figure_artifacts(fig, "starts", "Starts")[1].data)
-    for text in ("Starts", "infeasible", "(60, 90, 90)", "printed 0.28", "converged",
-                 "stopped by the evaluation budget", "optimum"):
+    for text in (
+        "Starts",
+        "infeasible",
+        "(60, 90, 90)",
+        "printed 0.28",
+        "converged",
+        "stopped by the evaluation budget",
+        "optimum",
+    ):
         assert text in strings, text
 
 

@@ -16,8 +16,9 @@ from worker.store.sql import decode_cursor, encode_cursor
 
 
 def new_job(process_id: str = "p", max_attempts: int = 3, **kw: object) -> NewJob:
-    return NewJob(process_id=process_id, inputs={"a": 1}, time_limit_s=60.0,
-                  max_attempts=max_attempts, **kw)  # type: ignore[arg-type]
+    return NewJob(
+        process_id=process_id, inputs={"a": 1}, time_limit_s=60.0, max_attempts=max_attempts, **kw
+    )  # type: ignore[arg-type]
 
 
 def test_create_then_get_roundtrips(store: JobStore) -> None:

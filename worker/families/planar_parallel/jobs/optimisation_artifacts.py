@@ -127,8 +127,9 @@ def _plots(
             title="Performance indices against δ (Fig. 8)",
             subtitle=f"{setting}, mean 1/κ on {spec.mean_mesh} x {spec.mean_mesh} nodes",
         )  # fmt: skip
-        artifacts += figure_artifacts(fig8, "design_indices",
-                                      "S/S_max, mean 1/kappa and eta against delta (Fig. 8)")
+        artifacts += figure_artifacts(
+            fig8, "design_indices", "S/S_max, mean 1/kappa and eta against delta (Fig. 8)"
+        )
     if outcome.design is not None:
         artifacts += _design_plots(spec, limit, outcome.design.row, arrays, setting, progress)
     return tuple(artifacts)

@@ -66,9 +66,7 @@ def unreachable_note(entries: list[dict[str, Any]], working_mode: tuple[int, int
     missing = [k for k, entry in enumerate(entries) if not entry["reachable"]]
     if not missing:
         return []
-    shown = ", ".join(
-        f"#{k + 1} ({entries[k]['x']:g}, {entries[k]['y']:g})" for k in missing[:10]
-    )
+    shown = ", ".join(f"#{k + 1} ({entries[k]['x']:g}, {entries[k]['y']:g})" for k in missing[:10])
     more = f" and {len(missing) - 10} more" if len(missing) > 10 else ""
     m1, m2 = working_mode
     return [

@@ -234,8 +234,11 @@ def _artifacts(
     spec: SynthesisSpec, grid: WorkspaceGrid, cases: list[CaseResult]
 ) -> tuple[Artifact, ...]:
     task_xy = _task_xy(spec)
-    data = npz_artifact("synthesis_cases.npz", _case_arrays(spec, grid, cases, task_xy),
-                        "d_z maps of the cases (NumPy arrays)")
+    data = npz_artifact(
+        "synthesis_cases.npz",
+        _case_arrays(spec, grid, cases, task_xy),
+        "d_z maps of the cases (NumPy arrays)",
+    )
     if not spec.plots:
         return (data,)
     path = None if spec.trajectory is None else trajectory_path(spec.trajectory)

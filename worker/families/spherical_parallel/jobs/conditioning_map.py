@@ -59,8 +59,7 @@ DEFINITIONS = {
     "rms_inverse_condition": "C_n = sqrt(mean(1/kappa^2)) over the samples (eq 25)",
     "mean_square_inverse_condition": "mean(1/kappa^2) (eq 28): what the paper prints as C_n",
     "gci": "mean(1/kappa) over the equal-weight samples (eq 24)",
-    "det_a": "det(A), rows (w_i x v_i)^T; 0 at a type-II singularity (eq 30: det(A)^2 >= "
-    "lambda)",
+    "det_a": "det(A), rows (w_i x v_i)^T; 0 at a type-II singularity (eq 30: det(A)^2 >= lambda)",
     "branch": "the sign of (u_i x w_i) . v_i kept on every leg (eq 29: -1)",
 }
 

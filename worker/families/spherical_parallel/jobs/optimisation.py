@@ -79,8 +79,10 @@ def run_optimisation(spec: OptimisationSpec, ctx: JobContext) -> JobOutcome:
     progress.report(0.0, "workspace samples")
     ws = kinematic_workspace(spec.workspace)
     samples, layout = workspace_samples(spec.workspace)
-    progress.report(2.0, f"screening {spec.starts * SCREEN_PER_START} candidate designs "
-                    f"for {spec.starts} starts")
+    progress.report(
+        2.0,
+        f"screening {spec.starts * SCREEN_PER_START} candidate designs for {spec.starts} starts",
+    )
     outcome = solve(spec, samples, progress)
     progress.report(76.0, "result")
     shown = presented_optimum(outcome, ws, samples, spec.branch, spec.identical_platforms)
@@ -92,8 +94,9 @@ def run_optimisation(spec: OptimisationSpec, ctx: JobContext) -> JobOutcome:
         "success": outcome.success,
         "message": outcome.message,
         "optimum": optimum,
-        "starts": [_start_entry(s, outcome.best_start, samples, spec.branch)
-                   for s in outcome.starts],
+        "starts": [
+            _start_entry(s, outcome.best_start, samples, spec.branch) for s in outcome.starts
+        ],
         "evaluations": outcome.evaluations,
         "screening": {
             "candidates_per_start": SCREEN_PER_START,
@@ -101,8 +104,10 @@ def run_optimisation(spec: OptimisationSpec, ctx: JobContext) -> JobOutcome:
             "evaluations": outcome.screen_evaluations,
             "rule": _SCREEN_RULE,
         },
-        "budget": {"starts": spec.starts, "max_evaluations_per_start":
-                   spec.max_evaluations_per_start},
+        "budget": {
+            "starts": spec.starts,
+            "max_evaluations_per_start": spec.max_evaluations_per_start,
+        },
         "free": list(spec.free),
         "held_deg": spec.held,
         "identical_platforms": spec.identical_platforms,

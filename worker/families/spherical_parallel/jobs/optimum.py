@@ -102,7 +102,11 @@ def optimum_entry(
         "workspace_minimum": minimum_entry(sp.workspace_minimum(shown.design, ws, outcome.branch)),
         "design_space": design_space_check(shown.design, ws),
         "start": outcome.best_start,
-        "found_as": None if found else {**design_entry(outcome.design), "relation":
-                                        f"the shown design is its twin: {shown.relation}"},
+        "found_as": None
+        if found
+        else {
+            **design_entry(outcome.design),
+            "relation": f"the shown design is its twin: {shown.relation}",
+        },
         "twins": twin_entries,
     }

@@ -106,8 +106,10 @@ def sample_entries(indices: sp.Indices, samples: FloatArray) -> dict[str, Any]:
         "samples": n,
         "real": int(n - unreachable.size),
         "unreachable": [int(i) for i in unreachable[:MAX_LISTED_SAMPLES]],
-        "unreachable_psi_deg": [[round(math.degrees(float(v)), 10) for v in samples[i]]
-                                for i in unreachable[:MAX_LISTED_SAMPLES]],
+        "unreachable_psi_deg": [
+            [round(math.degrees(float(v)), 10) for v in samples[i]]
+            for i in unreachable[:MAX_LISTED_SAMPLES]
+        ],
         "listed": listed,
         "entries": entries,
     }

@@ -57,8 +57,11 @@ def sampling_entry(layout: sp.SampleLayout) -> dict[str, Any]:
     """The sampling used, in degrees: counts, the angles along each axis and their rules."""
     return {
         "n": layout["n"],
-        "counts": {"azimuth": layout["counts"][0], "tilt": layout["counts"][1],
-                   "torsion": layout["counts"][2]},
+        "counts": {
+            "azimuth": layout["counts"][0],
+            "tilt": layout["counts"][1],
+            "torsion": layout["counts"][2],
+        },
         "default": tuple(layout["counts"]) == DEFAULT_COUNTS,
         "order": "psi1 slowest, then psi2, then psi3 (the product psi1 x psi2 x psi3)",
         "psi1_deg": _degrees(layout["psi1"]),
