@@ -91,8 +91,10 @@ def test_stem_must_be_a_plain_file_name(stem: str) -> None:
         figure_artifacts(small_figure(), stem, "t")
 
 
-def test_importing_the_package_loads_no_matplotlib() -> None:
-    code = "import sys, worker.plotting; print('matplotlib' in sys.modules)"
+def test_importing_the_plots_packages_loads_no_matplotlib() -> None:
+    families = ("chains", "planar_parallel", "planar_serial", "spherical_parallel")
+    imports = "; ".join(f"import worker.families.{f}.plots" for f in families)
+    code = f"import sys; {imports}; print('matplotlib' in sys.modules)"
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True,
                          cwd=ROOT)  # fmt: skip
     assert out.stdout.strip() == "False"
