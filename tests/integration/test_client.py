@@ -90,9 +90,11 @@ def test_arrays_table_and_download(client: Client, tmp_path: Path) -> None:
     assert x.ndim == 1 and y.ndim == 1 and values.shape == (y.size, x.size)
     assert np.nanmax(values) <= 1.0 + 1e-9 and np.nanmin(values) >= 0.0
     rows = job.table("conditioning_map.csv")
-    assert len(rows) == x.size * y.size and {"x", "y", "inverse_condition"} <= set(rows[0])
-    reachable = [r for r in rows if r["reachable"] == 1]
-    assert reachable and all(isinstance(r["inverse_condition"], float) for r in reachable)
+    columns = {"x [units]", "y [units]", "inverse_condition [-]"}
+    assert len(rows) == x.size * y.size and columns <= set(rows[0])
+    reachable = [r for r in rows if r["reachable [-]"] == 1]
+    assert reachable and all(isinstance(r["inverse_condition [-]"], float) for r in reachable)
+    assert str(maps["axes"]) and '"inverse_condition": ["y", "x"]' in str(maps["axes"])
     written = job.download(tmp_path / "files")
     assert [p.name for p in written] == [a.name for a in job.artifacts]
     for path, artifact in zip(written, job.artifacts, strict=True):

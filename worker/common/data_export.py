@@ -1,24 +1,72 @@
-"""Job data as downloadable artifacts: CSV tables (one row per node or entry) and NPZ.
+"""Job data as downloadable artifacts that describe themselves: CSV and NPZ.
 
 Shared by every job family; each family names its own columns and arrays.
+
+- **CSV**: the first line is the header (no preamble), one row per node or entry, and
+  every column name carries its unit: ``x [mm]``, ``inverse_condition [-]``
+  (dimensionless), ``joint_1_angle [deg]``.  One name per quantity, whatever the
+  options.  :func:`column` builds a name; :func:`columns_csv` refuses one without a unit.
+- **NPZ** (``numpy.load(f)``, no pickle): the arrays, the axis vectors beside them, and
+  three JSON strings: ``axes`` (each array's dimensions in order, by the names of the
+  1-D axis vectors or of counts: ``{"inverse_condition": ["y", "x"]}``), ``units``
+  (every array's unit) and ``metadata`` (the process, its inputs, the software).
+  ``json.loads(str(data["axes"]))`` reads one.
 """
 
 from __future__ import annotations
 
 import io
-from collections.abc import Callable, Mapping
+import json
+import re
+from collections.abc import Callable, Mapping, Sequence
+from importlib import metadata as package_metadata
+from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
 
 from worker.contract import Artifact
 
-__all__ = ["CSV_MEDIA_TYPE", "NPZ_MEDIA_TYPE", "columns_csv", "npz_artifact"]
+__all__ = [
+    "CSV_MEDIA_TYPE",
+    "DIMENSIONLESS",
+    "NPZ_DESCRIPTION_ENTRIES",
+    "NPZ_MEDIA_TYPE",
+    "column",
+    "columns_csv",
+    "job_metadata",
+    "npz_artifact",
+]
 
 CSV_MEDIA_TYPE = "text/csv"
 NPZ_MEDIA_TYPE = "application/x-npz"
 #: Rows formatted per block, to bound the temporary strings on large tables.
 CSV_BLOCK_ROWS = 131_072
+#: The unit of a pure number (a ratio, an index, a count, a flag).
+DIMENSIONLESS = "-"
+#: The NPZ entries that describe the others (JSON strings).
+NPZ_DESCRIPTION_ENTRIES = ("axes", "units", "metadata")
+#: A CSV column name: a quantity and its unit in brackets.
+_COLUMN = re.compile(r"^[A-Za-z][A-Za-z0-9_]* \[[^\[\],\n]+\]$")
+
+
+def column(quantity: str, unit: str) -> str:
+    """The CSV column name of ``quantity`` in ``unit``: ``"x [mm]"``."""
+    name = f"{quantity} [{unit}]"
+    if not _COLUMN.match(name):
+        raise ValueError(f"The 'quantity' and 'unit' of column must make a name like "
+                         f"'x [mm]'. Got {name!r} instead.")  # fmt: skip
+    return name
+
+
+def job_metadata(process_id: str, inputs: Mapping[str, Any]) -> dict[str, Any]:
+    """What an NPZ's ``metadata`` holds: the process, its inputs (as validated, JSON)
+    and the software that wrote it."""
+    try:
+        version = package_metadata.version("dexlab")
+    except package_metadata.PackageNotFoundError:  # pragma: no cover - not installed
+        version = "unknown"
+    return {"process": process_id, "inputs": dict(inputs), "software": f"dexlab {version}"}
 
 
 def columns_csv(
@@ -35,6 +83,12 @@ def columns_csv(
     millions of rows never holds all its text twice; ``on_progress(rows_done, rows)``
     is called after each block.
     """
+    unnamed = [name for name in columns if not _COLUMN.match(name)]
+    if unnamed:
+        raise ValueError(
+            "The 'columns' parameter of columns_csv must name every column with its unit "
+            f"('x [mm]', 'ratio [-]'). Got {unnamed} instead."
+        )
     arrays = [np.asarray(values).ravel() for values in columns.values()]
     sizes = {a.size for a in arrays}
     if len(sizes) > 1:
@@ -61,8 +115,54 @@ def _formatted(values: NDArray[np.generic]) -> list[str]:
     return [f"{v:.12g}" for v in values.astype(float).tolist()]
 
 
-def npz_artifact(name: str, arrays: Mapping[str, NDArray[np.generic]], title: str) -> Artifact:
-    """A compressed NumPy archive holding ``arrays`` (load with ``numpy.load``)."""
+def npz_artifact(
+    name: str,
+    arrays: Mapping[str, NDArray[np.generic]],
+    title: str,
+    *,
+    units: Mapping[str, str],
+    axes: Mapping[str, Sequence[str]],
+    metadata: Mapping[str, Any],
+) -> Artifact:
+    """A compressed NumPy archive holding ``arrays`` and their description.
+
+    ``units``: every array's unit (:data:`DIMENSIONLESS` for pure numbers). ``axes``:
+    the dimensions of the arrays that have any, in order; each name is a 1-D array of
+    ``arrays`` whose length is that dimension's (an axis vector such as ``"x"``), or a
+    name of your choice for a plain count (``"sample"``). ``metadata``: JSON-able
+    (:func:`job_metadata`). Stored as JSON strings under :data:`NPZ_DESCRIPTION_ENTRIES`;
+    load with ``numpy.load`` (no pickle).
+    """
+    reserved = set(arrays) & set(NPZ_DESCRIPTION_ENTRIES)
+    missing = sorted(set(arrays) - set(units))
+    unknown = sorted((set(units) | set(axes)) - set(arrays))
+    if reserved or missing or unknown:
+        raise ValueError(
+            "The 'arrays', 'units' and 'axes' parameters of npz_artifact must describe the "
+            f"same arrays. Got reserved names {sorted(reserved)}, arrays without a unit "
+            f"{missing} and descriptions of no array {unknown} instead."
+        )
+    for array_name, dims in axes.items():
+        shape = np.shape(arrays[array_name])
+        if len(dims) != len(shape):
+            raise ValueError(
+                f"The 'axes' parameter of npz_artifact must give {array_name!r} one name per "
+                f"dimension. Got {list(dims)} for shape {shape} instead."
+            )
+        for dim, size in zip(dims, shape, strict=True):
+            if dim in arrays and np.shape(arrays[dim]) != (size,):
+                raise ValueError(
+                    f"The 'axes' parameter of npz_artifact names {dim!r} as a dimension of "
+                    f"{array_name!r} of length {size}. Got an axis of shape "
+                    f"{np.shape(arrays[dim])} instead."
+                )
+    described = {
+        "axes": json.dumps({k: list(v) for k, v in axes.items()}),
+        "units": json.dumps(dict(units)),
+        "metadata": json.dumps(dict(metadata), allow_nan=False),
+    }
     buffer = io.BytesIO()
-    np.savez_compressed(buffer, allow_pickle=False, **arrays)
+    np.savez_compressed(
+        buffer, allow_pickle=False, **arrays, **{k: np.array(v) for k, v in described.items()}
+    )
     return Artifact(name, NPZ_MEDIA_TYPE, buffer.getvalue(), title)

@@ -14,9 +14,9 @@ from typing import Annotated
 
 from pydantic import Field, field_validator, model_validator
 
+from worker.common.field_errors import field_error
 from worker.common.numeric_ranges import MIN_STEP
 from worker.common.specs import FrozenSpec, entries
-from worker.families.planar_parallel.field_errors import field_error
 
 __all__ = [
     "DEFAULT_DELTA_RANGE",

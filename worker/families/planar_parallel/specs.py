@@ -21,6 +21,7 @@ from typing import Annotated, Any, Literal
 
 from pydantic import BeforeValidator, Field, JsonValue, field_validator, model_validator
 
+from worker.common.field_errors import field_error
 from worker.common.numeric_ranges import (
     MAX_LENGTH,
     MAX_LENGTH_RATIO,
@@ -32,7 +33,6 @@ from worker.common.numeric_ranges import (
     ratio_schema,
 )
 from worker.common.specs import MAX_POINTS_PER_AXIS, FrozenSpec, GridSpecBase
-from worker.families.planar_parallel.field_errors import field_error
 from worker.families.planar_parallel.optimisation_spec import (
     DEFAULT_DELTA_RANGE,
     DEFAULT_DELTA_STEP,
@@ -242,7 +242,24 @@ class ConditioningMapSpec(FrozenSpec):
                 f"< 0 for l1 = {self.l1:g}, l2 = {self.l2:g})"
             )
         self._lengths_in_ratio()
+        self._chains_can_meet()
         return self._grid_fits_the_robot()
+
+    def _chains_can_meet(self) -> None:
+        """Each proximal-arm chain reaches the annulus |l1 - l2| <= |p_i| <= l1 + l2
+        around its actuated joint at (±e, 0); the two annuli share an area iff
+        e < l1 + l2 (on the y axis both distances are sqrt(e^2 + y^2) >= e, and any
+        point is at least e from one of the joints)."""
+        if self.e is None or self.l2 is None:
+            return
+        reach = self.l1 + self.l2
+        if self.e >= reach:
+            raise field_error(
+                self, "e",
+                f"the two chains can never meet: their actuated joints are 2e = "
+                f"{2 * self.e:g} apart and each arm reaches at most l1 + l2 = {reach:g}, so "
+                f"the reachable set is empty (it needs e < l1 + l2)", self.e,
+            )  # fmt: skip
 
     def _lengths_in_ratio(self) -> None:
         given = {"l1": self.l1, "l2": self.l2, "e": self.e}

@@ -7,6 +7,7 @@ Lengths are in the caller's ``length_unit``, angles in degrees.
 
 from __future__ import annotations
 
+import math
 from typing import Annotated, Any
 
 import numpy as np
@@ -22,6 +23,7 @@ from pydantic import (
     model_validator,
 )
 
+from worker.common.field_errors import field_error
 from worker.common.numeric_ranges import (
     MAX_COORDINATE,
     MIN_LENGTH,
@@ -335,6 +337,32 @@ class _DesignSpec(FrozenSpec):
 # The mixins come last so that their fields lead the published schema.
 class DexterityMapSpec(_TaskSpec, _ArmSpec):
     """Inputs of ``planar3r-dexterity-map``: d_z and D = d_z/3 over a grid."""
+
+    @model_validator(mode="after")
+    def _grid_meets_the_reach(self) -> DexterityMapSpec:
+        """A grid that holds no point of the reachable annulus (unlimited joints: radii
+        max(0, 2 max(l) - sum(l)) to sum(l); joint limits only shrink it) would map
+        nothing."""
+        if self.grid.bounds is None:
+            return self
+        x_min, x_max, y_min, y_max = self.grid.bounds
+        outer = sum(self.links)
+        inner = max(0.0, 2.0 * max(self.links) - outer)
+        nearest = math.hypot(max(x_min, 0.0, -x_max), max(y_min, 0.0, -y_max))
+        farthest = math.hypot(max(abs(x_min), abs(x_max)), max(abs(y_min), abs(y_max)))
+        if nearest >= outer or farthest <= inner:
+            where = (
+                f"its nearest point is {nearest:g} from the base, beyond the reach "
+                f"l1 + l2 + l3 = {outer:g}"
+                if nearest >= outer
+                else f"it lies within {farthest:g} of the base, inside the unreachable "
+                f"disk of radius 2 max(l) - (l1 + l2 + l3) = {inner:g}"
+            )
+            raise field_error(
+                self, ("grid", "bounds"),
+                f"the grid holds no reachable point: {where}", self.grid.bounds,
+            )  # fmt: skip
+        return self
 
 
 class SynthesisSpec(_TaskSpec, _DesignSpec):

@@ -11,10 +11,12 @@ optimisation's in :mod:`worker.families.spherical_parallel.optimisation_spec`.
 
 from __future__ import annotations
 
+import math
 from typing import Annotated
 
-from pydantic import Field, field_validator
+from pydantic import Field, field_validator, model_validator
 
+from worker.common.field_errors import field_error
 from worker.families.spherical_parallel.design_space_spec import (
     MAX_BETAS,
     BetaRange,
@@ -137,6 +139,42 @@ class ConditioningMapSpec(_Design):
     plots: bool = Field(
         True, description="Render the PNG/SVG plots. false: data files (CSV/NPZ) only."
     )
+
+    @model_validator(mode="after")
+    def _design_reaches_the_workspace(self) -> ConditioningMapSpec:
+        """Refuse a design whose legs close (eq 12) at no orientation of the workspace:
+        every map would be empty.  Checked on the boundary-inclusive grid of the
+        closed workspace (22,464 orientations, a few milliseconds) and the equal-weight
+        samples; closure does not depend on the branch."""
+        from worker.families.spherical_parallel.kinematics import (
+            SpmDesign,
+            Workspace,
+            boundary_grid,
+            inverse_kinematics,
+            orientation_samples,
+        )
+
+        ws_spec = self.workspace
+        lo, hi = (math.radians(a) for a in ws_spec.torsion_deg)
+        ws = Workspace(
+            math.radians(ws_spec.tilt_max_deg),
+            (lo, lo + 2.0 * math.pi) if ws_spec.full_turn else (lo, hi),
+            ws_spec.full_turn,
+        )
+        design = SpmDesign.from_degrees(
+            self.alpha1_deg, self.alpha2_deg, self.beta_deg, self.gamma_deg
+        )
+        for orientations in (boundary_grid(ws), orientation_samples(ws)[0]):
+            if bool(inverse_kinematics(design, orientations, self.branch)[1].any()):
+                return self
+        raise field_error(
+            self, "workspace",
+            f"the design (alpha1, alpha2, beta, gamma) = ({self.alpha1_deg:g}, "
+            f"{self.alpha2_deg:g}, {self.beta_deg:g}, {self.gamma_deg:g}) deg cannot reach "
+            "the prescribed workspace at all: its legs close (eq 12) at none of the "
+            "workspace's orientations, so every map would be empty. spm-design-space "
+            "gives the link angles that reach all of it.", ws_spec.model_dump(),
+        )  # fmt: skip
 
     @field_validator("orientations")
     @classmethod

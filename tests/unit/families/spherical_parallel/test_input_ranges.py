@@ -288,7 +288,9 @@ TINY = {"tilt_max_deg": MARGIN, "torsion_deg": [360 - MIN_STEP, 360],
 @pytest.mark.parametrize(
     ("process", "raw"),
     [
-        (MAP, {"workspace": TINY, "alpha1_deg": MARGIN, "alpha2_deg": TOP, "beta_deg": MARGIN,
+        # Extreme angles of a design that reaches its workspace (one that reaches none,
+        # e.g. beta = MARGIN here, is refused: test_impossible_designs.py).
+        (MAP, {"workspace": TINY, "alpha1_deg": MARGIN, "alpha2_deg": TOP, "beta_deg": TOP,
                "gamma_deg": TOP, "map_grid": {"azimuth": 5, "tilt": 2},
                "orientations": [[-360, 180, 360]]}),
         (SPACE, {"workspace": {**TINY, "tilt_max_deg": TOP}, "identical_platforms": True,

@@ -15,7 +15,6 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from worker.common.data_export import columns_csv, npz_artifact
 from worker.common.figures import figure_artifacts
 from worker.common.grids import WorkspaceGrid
 from worker.common.progress import ProgressReporter
@@ -31,6 +30,7 @@ from worker.families.planar_parallel.jobs.kappa_region import (
     KappaRegionSection,
     kappa_region_section,
 )
+from worker.families.planar_parallel.jobs.map_files import CSV_NAME, NPZ_NAME, map_files
 from worker.families.planar_parallel.jobs.point_values import point_entries, unreachable_note
 from worker.families.planar_parallel.plots import conditioning as plots
 from worker.families.planar_parallel.specs import ConditioningMapSpec
@@ -47,7 +47,6 @@ ISOTROPIC_POINT_METHOD = (
 )
 #: Below this pressure angle (deg) the direct Jacobian A counts as singular.
 DEGENERATE_PRESSURE_ANGLE_DEG = 1.0
-CSV_NAME, NPZ_NAME = "conditioning_map.csv", "conditioning_map.npz"
 FIGURE_4_TITLE = "Conditioning index 1/kappa over the workspace (Fig. 4)"
 FIGURE_5_TITLE = "Minimum pressure angle beta_min over the workspace (Fig. 5)"
 
@@ -79,7 +78,7 @@ def run_conditioning_map(spec: ConditioningMapSpec, ctx: JobContext) -> JobOutco
     if spec.plots:
         artifacts = _plots(spec, arch, grid, cmap, points, isotropic, progress)
     progress.report(70.0, "data files")
-    artifacts += _data(spec, arch, grid, cmap, region, progress)
+    artifacts += map_files(spec, arch, grid, cmap, region, progress)
     progress.report(100.0, "done")
     return JobOutcome(result=result, artifacts=artifacts, notes=tuple(notes), errata=tuple(errata))
 
@@ -256,46 +255,3 @@ def _plots(
     )  # fmt: skip
     second = figure_artifacts(pressure, "pressure_angle_map", FIGURE_5_TITLE)
     return (*first, *second)
-
-
-def _data(
-    spec: ConditioningMapSpec,
-    arch: pp.Architecture,
-    grid: WorkspaceGrid,
-    cmap: pp.ConditioningMap,
-    region: KappaRegionSection | None,
-    progress: ProgressReporter,
-) -> tuple[Artifact, ...]:
-    """The map as CSV (progress 70-95 %, by blocks of rows) and NPZ (95-99 %)."""
-    xx, yy = np.meshgrid(grid.x, grid.y)
-    angles = np.degrees(cmap.pressure_angles)
-    proximal = spec.actuation == "proximal-arm"
-    joints = np.degrees(cmap.joints) if proximal else cmap.joints
-    suffix = "_deg" if proximal else ""
-    columns: dict[str, NDArray[np.generic]] = {
-        "x": xx, "y": yy, "reachable": cmap.reachable,
-        "inverse_condition": cmap.inverse_condition,
-        "pressure_angle_1_deg": angles[..., 0], "pressure_angle_2_deg": angles[..., 1],
-        "min_pressure_angle_deg": np.degrees(cmap.min_pressure_angle),
-        f"joint_1{suffix}": joints[..., 0], f"joint_2{suffix}": joints[..., 1],
-    }  # fmt: skip
-    csv = columns_csv(CSV_NAME, columns, "Conditioning map, one row per grid node (CSV)",
-                      progress.span(70.0, 95.0, "data files"))  # fmt: skip
-    arrays: dict[str, NDArray[np.generic]] = {
-        "x": grid.x, "y": grid.y, "reachable": cmap.reachable,
-        "inverse_condition": cmap.inverse_condition, "pressure_angles_deg": angles,
-        "min_pressure_angle_deg": np.degrees(cmap.min_pressure_angle),
-        f"joints{suffix}": joints,
-        "architecture_l1_l2_e": np.array([arch.l1, arch.l2, arch.e]),
-        "working_mode": np.array(spec.working_mode),
-    }  # fmt: skip
-    if region is not None:
-        arrays["inverse_condition_limit"] = np.array(region.entry["inverse_condition_limit"])
-        arrays["w_kappa0_columns_x"] = region.region.x
-        arrays["w_kappa0_columns_lower"] = region.region.lower
-        arrays["w_kappa0_columns_upper"] = region.region.upper
-        for k, polygon in enumerate(region.region.boundary):
-            arrays[f"w_kappa0_boundary_{k}"] = polygon
-    progress.report(95.0, "data files")
-    npz = npz_artifact(NPZ_NAME, arrays, "Conditioning map (NumPy arrays)")
-    return csv, npz

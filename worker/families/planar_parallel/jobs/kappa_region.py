@@ -2,9 +2,12 @@
 
 The exact boundary comes from
 :func:`worker.families.planar_parallel.kinematics.kappa_region_boundary`
-(vertical 1-D root searches, the lowest run of each column); the map's grid then checks
-it: nodes of W_kappa0 above a gap in their column (overhangs, e.g. the hooks of the arms
-of W_kappa0 at small delta) are not part of that description, and are reported.
+(vertical 1-D root searches, the lowest run of each column); ``area`` is the whole set
+(every run of every column, refined the same way), ``rectangle_region_area`` the lowest
+runs only (the part the paper's rectangle search uses).  The map's grid then checks the
+boundary: nodes of W_kappa0 above a gap in their column (overhangs, e.g. the hooks of
+the arms of W_kappa0 at small delta) are not part of that description, and are
+reported.
 """
 
 from __future__ import annotations
@@ -64,13 +67,21 @@ def kappa_region_section(
     entry = {
         "inverse_condition_limit": limit,
         "found": region.found,
-        "area": region.area if region.found else 0.0,
+        "area": region.whole_area if region.found else 0.0,
+        "rectangle_region_area": region.area if region.found else 0.0,
         "area_grid": area_grid,
         "undescribed_area_grid": undescribed,
         "boundary": [polygon.tolist() for polygon in region.boundary],
         "message": region.message,
     }
     notes = []
+    if region.found and region.whole_area > (1.0 + 1e-6) * region.area:
+        notes.append(
+            f"W_kappa0 is more than the lowest run of each column: its area is "
+            f"{region.whole_area:.6g} {length_unit}², of which {region.area:.6g} in the "
+            "lowest runs ('rectangle_region_area', the part the paper's rectangle lives "
+            "in; 'boundary' outlines that part)."
+        )
     if not region.found:
         notes.append(f"W_kappa0 is empty: no point of the working mode has 1/kappa >= {limit:g} "
                      "(none found by the column search).")  # fmt: skip
@@ -78,9 +89,9 @@ def kappa_region_section(
         notes.append(
             f"W_kappa0 reaches above a gap in some columns (about {undescribed:.4g} "
             f"{length_unit}² of its {area_grid:.4g} on the grid): the "
-            "column-wise 'boundary' and 'area' describe the lowest part of each column only "
-            "(the part the paper's rectangle lives in); the figures outline all of it, at "
-            "the grid's resolution."
+            "column-wise 'boundary' and 'rectangle_region_area' describe the lowest part of "
+            "each column only (the part the paper's rectangle lives in); 'area' and the "
+            "figures cover all of it."
         )
     return KappaRegionSection(entry, notes, region)
 

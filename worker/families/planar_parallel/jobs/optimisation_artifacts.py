@@ -15,7 +15,13 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 from numpy.typing import NDArray
 
-from worker.common.data_export import columns_csv, npz_artifact
+from worker.common.data_export import (
+    DIMENSIONLESS,
+    column,
+    columns_csv,
+    job_metadata,
+    npz_artifact,
+)
 from worker.common.figures import figure_artifacts
 from worker.common.progress import ProgressReporter
 from worker.contract import Artifact
@@ -51,7 +57,7 @@ def optimisation_artifacts(
     if spec.plots:
         artifacts = _plots(spec, limit, limit_delta, outcome, arrays, progress)
     progress.report(96.0, "data files")
-    return (*artifacts, *_data(outcome, arrays, limit))
+    return (*artifacts, *_data(spec, outcome, arrays, limit))
 
 
 def _figure_arrays(
@@ -167,8 +173,15 @@ def _design_plots(
     )  # fmt: skip
 
 
-_SWEEP_COLUMNS = ("delta", "e", "h", "b", "H_prime", "S", "S_over_S_max",
-                  "mean_inverse_condition", "eta", "min_pressure_angle_deg", "found")  # fmt: skip
+#: The sweep's quantities and their units; lengths are normalised, l1 = 1 (the unit
+#: "l1" in every file and figure of this process).
+NORMALISED = "l1"
+_SWEEP_COLUMNS = {
+    "delta": DIMENSIONLESS, "e": NORMALISED, "h": NORMALISED, "b": NORMALISED,
+    "H_prime": NORMALISED, "S": f"{NORMALISED}^2", "S_over_S_max": DIMENSIONLESS,
+    "mean_inverse_condition": DIMENSIONLESS, "eta": DIMENSIONLESS,
+    "min_pressure_angle_deg": "deg", "found": DIMENSIONLESS,
+}  # fmt: skip
 
 
 def _sweep_columns(outcome: SweepOutcome) -> dict[str, NDArray[Any]]:
@@ -183,14 +196,45 @@ def _sweep_columns(outcome: SweepOutcome) -> dict[str, NDArray[Any]]:
 
 
 def _data(
-    outcome: SweepOutcome, arrays: dict[str, FloatArray], limit: float
+    spec: OptimisationSpec, outcome: SweepOutcome, arrays: dict[str, FloatArray], limit: float
 ) -> tuple[Artifact, Artifact]:
     columns = _sweep_columns(outcome)
-    csv = columns_csv(CSV_NAME, columns, "The delta sweep, one row per delta (CSV)")
+    named = {
+        column(name.removesuffix("_deg"), _SWEEP_COLUMNS[name]): values
+        for name, values in columns.items()
+    }
+    csv = columns_csv(CSV_NAME, named, "The delta sweep, one row per delta (CSV)")
+    units = {f"sweep_{name}": unit for name, unit in _SWEEP_COLUMNS.items()}
+    units |= {
+        "fig7_deltas": DIMENSIONLESS, "fig7_allowable_angles_deg": "deg",
+        "fig7_limits": DIMENSIONLESS, "rectangle_x": NORMALISED, "rectangle_y": NORMALISED,
+        "rectangle_inverse_condition": DIMENSIONLESS,
+        "rectangle_min_pressure_angle_deg": "deg", "map_x": NORMALISED, "map_y": NORMALISED,
+        "map_inverse_condition": DIMENSIONLESS, "inverse_condition_limit": DIMENSIONLESS,
+        "S_max": f"{NORMALISED}^2",
+    }  # fmt: skip
+    axes: dict[str, tuple[str, ...]] = {
+        f"sweep_{name}": ("sweep_delta",) for name in _SWEEP_COLUMNS if name != "delta"
+    }
+    axes |= {"fig7_limits": ("fig7_allowable_angles_deg", "fig7_deltas")}
+    if "rectangle_x" in arrays:
+        axes |= {
+            "rectangle_inverse_condition": ("rectangle_y", "rectangle_x"),
+            "rectangle_min_pressure_angle_deg": ("rectangle_y", "rectangle_x"),
+            "map_inverse_condition": ("map_y", "map_x"),
+        }
+    everything = {
+        **{f"sweep_{name}": values for name, values in columns.items()},
+        **arrays,
+        "inverse_condition_limit": np.array(limit),
+        "S_max": np.array(outcome.S_max),
+    }
     npz = npz_artifact(
         NPZ_NAME,
-        {**{f"sweep_{name}": values for name, values in columns.items()}, **arrays,
-         "inverse_condition_limit": np.array(limit), "S_max": np.array(outcome.S_max)},
+        everything,
         "The sweep and the figures' arrays (NumPy)",
-    )  # fmt: skip
+        units={name: units[name] for name in everything},
+        axes=axes,
+        metadata=job_metadata("planar2dof-optimisation", spec.model_dump(mode="json")),
+    )
     return csv, npz

@@ -17,7 +17,12 @@ from dataclasses import dataclass
 import numpy as np
 
 from worker.common.parameter_errors import bad_parameter
-from worker.families.planar_parallel.kinematics.columns import bottom_runs, search_box, single
+from worker.families.planar_parallel.kinematics.columns import (
+    bottom_runs,
+    column_lengths,
+    search_box,
+    single,
+)
 from worker.families.planar_parallel.kinematics.model import (
     Architecture,
     FloatArray,
@@ -60,6 +65,10 @@ class KappaRegion:
     boundary: tuple[FloatArray, ...]
     area: float
     message: str
+    #: The area of all of W_kappa0 (every run of every column, not only the lowest), by
+    #: the trapezoid rule over the same columns; equal to ``area`` where no column has a
+    #: gap (the paper's isotropic designs).
+    whole_area: float = 0.0
 
 
 @dataclass(frozen=True)
@@ -128,10 +137,13 @@ def kappa_region_boundary(
         x_half_span = _positive_real(x_half_span, "x_half_span", function, "a positive length")
     span, y_low, y_high = search_box(arch, value, x_half_span)
     xs = np.linspace(-span, span, count) if span > 0 else np.zeros(count)
+    whole_area = 0.0
     if span > 0:
         batch = single(arch, mode, value)
-        lower, upper = (run[0] for run in bottom_runs(
-            batch, xs[None, :], np.array([y_low]), np.array([y_high]), scans))  # fmt: skip
+        scan = (batch, xs[None, :], np.array([y_low]), np.array([y_high]), scans)
+        lower, upper = (run[0] for run in bottom_runs(*scan))
+        lengths = column_lengths(*scan)[0]
+        whole_area = float(np.sum(0.5 * (lengths[1:] + lengths[:-1]) * np.diff(xs)))
     else:
         lower = upper = np.full(count, np.nan)
     found = np.isfinite(lower)
@@ -147,7 +159,9 @@ def kappa_region_boundary(
         f"({count} columns over |x| <= {span:.6g}, {scans} rows)"
         if polygons else f"W_kappa0 at 1/kappa >= {value:g} is empty in |x| <= {span:.6g}"
     )  # fmt: skip
-    return KappaRegion(bool(polygons), value, xs, lower, upper, tuple(polygons), area, message)
+    return KappaRegion(
+        bool(polygons), value, xs, lower, upper, tuple(polygons), area, message, whole_area
+    )
 
 
 _STATUS = {

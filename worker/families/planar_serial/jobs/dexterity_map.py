@@ -14,7 +14,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from worker.common.data_export import npz_artifact
+from worker.common.data_export import DIMENSIONLESS, job_metadata, npz_artifact
 from worker.common.figures import figure_artifacts
 from worker.common.progress import ProgressReporter
 from worker.contract import Artifact, JobContext, JobOutcome
@@ -250,7 +250,10 @@ def _data(
     limits = np.asarray(
         spec.joint_limits_deg if spec.joint_limits_deg is not None else np.full((3, 2), np.nan)
     )
-    csv = dexterity_csv("dexterity_map.csv", grid.x, grid.y, d_z, region, "Dexterity map (CSV)")
+    csv = dexterity_csv(
+        "dexterity_map.csv", grid.x, grid.y, d_z, region, "Dexterity map (CSV)", spec.length_unit
+    )
+    length, none = spec.length_unit, DIMENSIONLESS
     npz = npz_artifact(
         "dexterity_map.npz",
         {
@@ -263,5 +266,22 @@ def _data(
             "joint_limits_deg": limits,
         },
         "Dexterity map (NumPy arrays)",
+        units={
+            "x": length,
+            "y": length,
+            "d_z": none,
+            "D": none,
+            "region": none,
+            "links": length,
+            "joint_limits_deg": "deg",
+        },
+        axes={
+            "d_z": ("y", "x"),
+            "D": ("y", "x"),
+            "region": ("y", "x"),
+            "links": ("link",),
+            "joint_limits_deg": ("joint", "bound"),
+        },
+        metadata=job_metadata("planar3r-dexterity-map", spec.model_dump(mode="json")),
     )
     return csv, npz

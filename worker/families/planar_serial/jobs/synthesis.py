@@ -18,7 +18,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from worker.common.data_export import npz_artifact
+from worker.common.data_export import DIMENSIONLESS, job_metadata, npz_artifact
 from worker.common.figures import figure_artifacts
 from worker.common.progress import ProgressReporter
 from worker.contract import Artifact, JobContext, JobOutcome
@@ -234,10 +234,19 @@ def _artifacts(
     spec: SynthesisSpec, grid: WorkspaceGrid, cases: list[CaseResult]
 ) -> tuple[Artifact, ...]:
     task_xy = _task_xy(spec)
+    arrays = _case_arrays(spec, grid, cases, task_xy)
     data = npz_artifact(
         "synthesis_cases.npz",
-        _case_arrays(spec, grid, cases, task_xy),
+        arrays,
         "d_z maps of the cases (NumPy arrays)",
+        units={n: DIMENSIONLESS if n.startswith("d_z") else spec.length_unit for n in arrays},
+        axes={
+            "task_points": ("task_point", "xy"),
+            **({"trajectory_samples": ("sample", "xy")} if "trajectory_samples" in arrays else {}),
+            **{n: ("y", "x") for n in arrays if n.startswith("d_z_case")},
+            **{n: ("link",) for n in arrays if n.startswith("links_case")},
+        },
+        metadata=job_metadata("planar3r-synthesis", spec.model_dump(mode="json")),
     )
     if not spec.plots:
         return (data,)

@@ -13,7 +13,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from worker.common.data_export import columns_csv, npz_artifact
+from worker.common.data_export import DIMENSIONLESS, columns_csv, job_metadata, npz_artifact
 from worker.common.figures import figure_artifacts
 from worker.common.progress import ProgressReporter
 from worker.contract import Artifact
@@ -28,9 +28,11 @@ __all__ = ["CSV_COLUMNS", "CSV_NAME", "NPZ_NAME", "conditioning_data", "conditio
 
 CSV_NAME = "conditioning_samples.csv"
 NPZ_NAME = "conditioning_map.npz"
+#: One row per workspace sample: the orientation, whether every leg closes, the input
+#: angles, 1/kappa, kappa and det A (each name with its unit).
 CSV_COLUMNS = (
-    "psi1_deg", "psi2_deg", "psi3_deg", "real", "theta1_deg", "theta2_deg", "theta3_deg",
-    "inverse_condition", "condition_number", "det_a",
+    "psi1 [deg]", "psi2 [deg]", "psi3 [deg]", "real [-]", "theta1 [deg]", "theta2 [deg]",
+    "theta3 [deg]", "inverse_condition [-]", "condition_number [-]", "det_a [-]",
 )  # fmt: skip
 
 
@@ -101,29 +103,46 @@ def conditioning_data(
     given = np.asarray([o["psi_deg"] for o in orientations], dtype=float).reshape(-1, 3)
     given_inverse = np.array([np.nan if o["inverse_condition"] is None else o["inverse_condition"]
                               for o in orientations], dtype=float)  # fmt: skip
+    arrays: dict[str, NDArray[np.generic]] = {
+        "design_deg": np.array([spec.alpha1_deg, spec.alpha2_deg, spec.beta_deg, spec.gamma_deg]),
+        "branch": np.array(spec.branch),
+        "samples_deg": psi_deg,
+        "real": indices.real,
+        "theta_deg": theta_deg,
+        "inverse_condition": inverse,
+        "condition_number": kappa,
+        "det_a": indices.det_a,
+        "map_azimuth_deg": maps.azimuth_deg,
+        "map_tilt_deg": maps.tilt_deg,
+        "map_torsions_deg": maps.torsions_deg,
+        "map_inverse_condition": maps.values,
+        "sweep_psi3_deg": sweeps.psi3_deg,
+        "sweep_azimuth_tilt_deg": sweeps.azimuth_tilt_deg,
+        "sweep_inverse_condition": sweeps.values,
+        "orientations_deg": given,
+        "orientations_inverse_condition": given_inverse,
+    }
+    angles = {n for n in arrays if n.endswith("_deg")}
+    per_sample = ("sample",)
     npz = npz_artifact(
         NPZ_NAME,
-        {
-            "design_deg": np.array(
-                [spec.alpha1_deg, spec.alpha2_deg, spec.beta_deg, spec.gamma_deg]
-            ),
-            "branch": np.array(spec.branch),
-            "samples_deg": psi_deg,
-            "real": indices.real,
-            "theta_deg": theta_deg,
-            "inverse_condition": inverse,
-            "condition_number": kappa,
-            "det_a": indices.det_a,
-            "map_azimuth_deg": maps.azimuth_deg,
-            "map_tilt_deg": maps.tilt_deg,
-            "map_torsions_deg": maps.torsions_deg,
-            "map_inverse_condition": maps.values,
-            "sweep_psi3_deg": sweeps.psi3_deg,
-            "sweep_azimuth_tilt_deg": sweeps.azimuth_tilt_deg,
-            "sweep_inverse_condition": sweeps.values,
-            "orientations_deg": given,
-            "orientations_inverse_condition": given_inverse,
-        },
+        arrays,
         "Conditioning map (NumPy arrays)",
+        units={n: "deg" if n in angles else DIMENSIONLESS for n in arrays},
+        axes={
+            "design_deg": ("alpha1_alpha2_beta_gamma",),
+            "samples_deg": (*per_sample, "psi1_psi2_psi3"),
+            "real": per_sample,
+            "theta_deg": (*per_sample, "leg"),
+            "inverse_condition": per_sample,
+            "condition_number": per_sample,
+            "det_a": per_sample,
+            "map_inverse_condition": ("map_torsions_deg", "map_tilt_deg", "map_azimuth_deg"),
+            "sweep_azimuth_tilt_deg": ("sweep", "psi1_psi2"),
+            "sweep_inverse_condition": ("sweep", "sweep_psi3_deg"),
+            "orientations_deg": ("orientation", "psi1_psi2_psi3"),
+            "orientations_inverse_condition": ("orientation",),
+        },
+        metadata=job_metadata("spm-conditioning-map", spec.model_dump(mode="json")),
     )
     return csv, npz

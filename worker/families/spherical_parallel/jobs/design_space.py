@@ -14,7 +14,13 @@ from typing import Any
 
 import numpy as np
 
-from worker.common.data_export import columns_csv, npz_artifact
+from worker.common.data_export import (
+    DIMENSIONLESS,
+    column,
+    columns_csv,
+    job_metadata,
+    npz_artifact,
+)
 from worker.common.figures import figure_artifacts
 from worker.common.progress import ProgressReporter
 from worker.contract import Artifact, JobContext, JobOutcome
@@ -128,7 +134,7 @@ def run_design_space(spec: DesignSpaceSpec, ctx: JobContext) -> JobOutcome:
         progress.report(80.0, "plots")
         artifacts = _plots(spec, rows, dist)
     progress.report(95.0, "data files")
-    artifacts += _data(rows, dist)
+    artifacts += _data(spec, rows, dist)
     progress.report(100.0, "done")
     return JobOutcome(result=result, artifacts=artifacts, notes=tuple(notes))
 
@@ -203,13 +209,37 @@ def _plots(
                                           "mean(1/kappa^2) over one sub-design space"))  # fmt: skip
 
 
-def _data(rows: list[dict[str, Any]], dist: IndexDistribution | None) -> tuple[Artifact, ...]:
+def _data(
+    spec: DesignSpaceSpec, rows: list[dict[str, Any]], dist: IndexDistribution | None
+) -> tuple[Artifact, ...]:
     names = ("beta_deg", "gamma_deg", "f_min", "f_max", "D1_deg", "D2_deg", "degenerate", "empty")
     columns = {n: np.array([r[n] for r in rows]) for n in names}
-    csv = columns_csv(CSV_NAME, columns, "Design space per beta (CSV)")
+
+    def unit(name: str) -> str:
+        return "deg" if name.endswith("_deg") else DIMENSIONLESS
+
+    named = {column(n.removesuffix("_deg"), unit(n)): values for n, values in columns.items()}
+    csv = columns_csv(CSV_NAME, named, "Design space per beta (CSV)")
     arrays = dict(columns)
     arrays["corners_deg"] = np.array([r["rectangle"]["corners_deg"] for r in rows])
+    axes: dict[str, tuple[str, ...]] = {n: ("beta_deg",) for n in names if n != "beta_deg"}
+    axes["corners_deg"] = ("beta_deg", "corner", "alpha1_alpha2")
     if dist is not None:
-        arrays |= {"index_map_alpha1_deg": dist.alpha1_deg, "index_map_alpha2_deg":
-                   dist.alpha2_deg, "index_map_mean_square": dist.values}  # fmt: skip
-    return csv, npz_artifact(NPZ_NAME, arrays, "Design space (NumPy arrays)")
+        arrays |= {
+            "index_map_alpha1_deg": dist.alpha1_deg,
+            "index_map_alpha2_deg": dist.alpha2_deg,
+            "index_map_mean_square": dist.values,
+        }
+        axes |= {
+            n: ("row", "column")
+            for n in ("index_map_alpha1_deg", "index_map_alpha2_deg", "index_map_mean_square")
+        }
+    npz = npz_artifact(
+        NPZ_NAME,
+        arrays,
+        "Design space (NumPy arrays)",
+        units={n: unit(n) for n in arrays},
+        axes=axes,
+        metadata=job_metadata("spm-design-space", spec.model_dump(mode="json")),
+    )
+    return csv, npz

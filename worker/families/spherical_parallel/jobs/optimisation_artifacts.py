@@ -13,7 +13,13 @@ from typing import Any
 
 import numpy as np
 
-from worker.common.data_export import columns_csv, npz_artifact
+from worker.common.data_export import (
+    DIMENSIONLESS,
+    column,
+    columns_csv,
+    job_metadata,
+    npz_artifact,
+)
 from worker.common.figures import figure_artifacts
 from worker.common.progress import ProgressReporter
 from worker.contract import Artifact
@@ -39,6 +45,15 @@ _CSV_COLUMNS = ("start", "alpha1_start_deg", "alpha2_start_deg", "beta_start_deg
                 "gamma_start_deg", "alpha1_deg", "alpha2_deg", "beta_deg", "gamma_deg",
                 "converged", "status", "nfev", "evaluations", "feasible",
                 "mean_square_inverse_condition")  # fmt: skip
+
+
+def _unit(name: str) -> str:
+    return "deg" if name.endswith("_deg") else DIMENSIONLESS
+
+
+def _csv_name(name: str) -> str:
+    """'alpha1_start_deg' -> 'alpha1_start [deg]', 'nfev' -> 'nfev [-]'."""
+    return column(name.removesuffix("_deg"), _unit(name))
 
 
 def _angles(design: sp.SpmDesign | None) -> tuple[float, ...]:
@@ -73,7 +88,7 @@ def optimisation_artifacts(
             progress.report(92.0, "plot: torsion sweeps")
             artifacts += _sweeps(spec, shown.design, paper)
     progress.report(96.0, "data files")
-    return artifacts + _data(samples, outcome, shown, dist)
+    return artifacts + _data(spec, samples, outcome, shown, dist)
 
 
 def _paper_rows(paper: dict[str, Any] | None) -> list[dict[str, Any]]:
@@ -147,16 +162,33 @@ def _sweeps(spec: OptimisationSpec, design: sp.SpmDesign, paper: dict[str, Any] 
     return figure_artifacts(fig, "torsion_sweeps", "1/kappa of the optimum along torsion turns")
 
 
-def _data(samples: FloatArray, outcome: sp.OptimisationResult, shown: Presented | None,
-          dist: IndexDistribution | None) -> tuple[Artifact, ...]:  # fmt: skip
-    rows = [(s.index, *_angles(s.start_design), *_angles(s.design), s.converged, s.status,
-             s.nfev, s.evaluations, s.feasible, s.mean_square_inverse_condition)
-            for s in outcome.starts]  # fmt: skip
+def _data(
+    spec: OptimisationSpec,
+    samples: FloatArray,
+    outcome: sp.OptimisationResult,
+    shown: Presented | None,
+    dist: IndexDistribution | None,
+) -> tuple[Artifact, ...]:
+    rows = [
+        (
+            s.index,
+            *_angles(s.start_design),
+            *_angles(s.design),
+            s.converged,
+            s.status,
+            s.nfev,
+            s.evaluations,
+            s.feasible,
+            s.mean_square_inverse_condition,
+        )
+        for s in outcome.starts
+    ]
     table = list(zip(*rows, strict=True))
     columns = {name: np.asarray(values) for name, values in zip(_CSV_COLUMNS, table, strict=True)}
     for flag in ("converged", "feasible"):
         columns[flag] = columns[flag].astype(np.int8)
-    csv = columns_csv(CSV_NAME, columns, "Every optimisation start (CSV)")
+    named = {_csv_name(name): values for name, values in columns.items()}
+    csv = columns_csv(CSV_NAME, named, "Every optimisation start (CSV)")
     arrays: dict[str, Any] = dict(columns)
     arrays["samples_deg"] = np.degrees(samples)
     if shown is not None:
@@ -165,6 +197,31 @@ def _data(samples: FloatArray, outcome: sp.OptimisationResult, shown: Presented 
         arrays["optimum_theta_deg"] = np.degrees(shown.indices.theta)
         arrays["optimum_det_a"] = shown.indices.det_a
     if dist is not None:
-        arrays |= {"index_map_alpha1_deg": dist.alpha1_deg, "index_map_alpha2_deg":
-                   dist.alpha2_deg, "index_map_mean_square": dist.values}  # fmt: skip
-    return csv, npz_artifact(NPZ_NAME, arrays, "Optimisation (NumPy arrays)")
+        arrays |= {
+            "index_map_alpha1_deg": dist.alpha1_deg,
+            "index_map_alpha2_deg": dist.alpha2_deg,
+            "index_map_mean_square": dist.values,
+        }
+    axes: dict[str, tuple[str, ...]] = {n: ("start",) for n in columns}
+    axes["samples_deg"] = ("sample", "psi1_psi2_psi3")
+    if shown is not None:
+        axes |= {
+            "optimum_deg": ("alpha1_alpha2_beta_gamma",),
+            "optimum_inverse_condition": ("sample",),
+            "optimum_theta_deg": ("sample", "leg"),
+            "optimum_det_a": ("sample",),
+        }
+    if dist is not None:
+        axes |= {
+            n: ("row", "column")
+            for n in ("index_map_alpha1_deg", "index_map_alpha2_deg", "index_map_mean_square")
+        }
+    npz = npz_artifact(
+        NPZ_NAME,
+        arrays,
+        "Optimisation (NumPy arrays)",
+        units={n: _unit(n) for n in arrays},
+        axes=axes,
+        metadata=job_metadata("spm-optimisation", spec.model_dump(mode="json")),
+    )
+    return csv, npz

@@ -39,10 +39,17 @@ ARTIFACTS = {
     "conditioning_map.csv": "text/csv",
     "conditioning_map.npz": "application/x-npz",
 }
+#: The CSV's columns, each with its unit; the last two name the actuated joints'
+#: quantity: an arm's angle, a leg's length or a slider's position.
 CSV_COLUMNS = [
-    "x", "y", "reachable", "inverse_condition", "pressure_angle_1_deg",
-    "pressure_angle_2_deg", "min_pressure_angle_deg", "joint_1_deg", "joint_2_deg",
+    "x [units]", "y [units]", "reachable [-]", "inverse_condition [-]",
+    "pressure_angle_1 [deg]", "pressure_angle_2 [deg]", "min_pressure_angle [deg]",
 ]  # fmt: skip
+JOINT_COLUMNS = {
+    "proximal-arm": ["joint_1_angle [deg]", "joint_2_angle [deg]"],
+    "telescopic-leg": ["leg_1_length [units]", "leg_2_length [units]"],
+    "linear-drive": ["slider_1_position [units]", "slider_2_position [units]"],
+}
 #: docs/methods/planar-parallel.md: point values (1/kappa, angles) to 1e-6.
 POINT_TOL = 1e-6
 SQRT_HALF = math.sqrt(0.5)
@@ -147,8 +154,7 @@ def test_artifacts_and_data(index: int, examples: Any, rendered: Any) -> None:
     assert {a.name: a.media_type for a in outcome.artifacts} == ARTIFACTS
     text = artifact(outcome, "conditioning_map.csv").decode()
     rows = list(csv.reader(io.StringIO(text)))
-    joints = ["joint_1", "joint_2"] if outcome.result["actuation"] != "proximal-arm" else []
-    assert rows[0] == (CSV_COLUMNS[:-2] + joints if joints else CSV_COLUMNS)
+    assert rows[0] == CSV_COLUMNS + JOINT_COLUMNS[outcome.result["actuation"]]
     assert len(rows) - 1 == 301**2
     data = np.genfromtxt(io.StringIO(text), delimiter=",", skip_header=1)
     with np.load(io.BytesIO(artifact(outcome, "conditioning_map.npz"))) as npz:
@@ -161,6 +167,14 @@ def test_artifacts_and_data(index: int, examples: Any, rendered: Any) -> None:
         np.testing.assert_allclose(data[:, 6], npz["min_pressure_angle_deg"].ravel(),
                                    rtol=1e-11, equal_nan=True)  # fmt: skip
         assert npz["w_kappa0_boundary_0"].shape[1] == 2
+        axes, units = json.loads(str(npz["axes"])), json.loads(str(npz["units"]))
+        assert axes["inverse_condition"] == ["y", "x"]
+        assert axes["pressure_angles_deg"] == ["y", "x", "chain"]
+        assert set(units) == set(npz.files) - {"axes", "units", "metadata"}
+        assert units["x"] == "units" and units["pressure_angles_deg"] == "deg"
+        meta = json.loads(str(npz["metadata"]))
+        assert meta["process"] == "planar2dof-conditioning-map"
+        assert meta["inputs"]["actuation"] == outcome.result["actuation"]
 
 
 @pytest.mark.parametrize("index", INDICES)
@@ -229,10 +243,14 @@ def test_delta_1_5_has_overhangs_noted(rendered: tuple[JobOutcome, RecordingCont
     outcome, _ = rendered
     region = outcome.result["w_kappa0"]
     assert region["undescribed_area_grid"] > 0.03 * region["area_grid"]
-    assert region["area"] + region["undescribed_area_grid"] == pytest.approx(
+    # The lowest runs plus the overhangs are the whole set, which 'area' is (METHODS §2).
+    assert region["rectangle_region_area"] + region["undescribed_area_grid"] == pytest.approx(
         region["area_grid"], rel=0.01
     )
+    assert region["area"] == pytest.approx(region["area_grid"], rel=0.01)
+    assert region["area"] > 1.03 * region["rectangle_region_area"]
     assert any("above a gap in some columns" in note for note in outcome.all_notes)
+    assert any("more than the lowest run of each column" in n for n in outcome.all_notes)
 
 
 def test_default_grid_holds_the_reachable_workspace(examples: Any) -> None:
@@ -295,9 +313,10 @@ def test_telescopic_legs(examples: Any) -> None:
     )  # fmt: skip
     assert result["summary"]["min_pressure_angle_deg"] == {"min": 90.0, "max": 90.0,
                                                            "mean": 90.0}  # fmt: skip
-    # W_kappa0 is two lobes; the column-wise boundary holds the lower one only
+    # W_kappa0 is two lobes: 'area' is both, the column-wise boundary the lower one
     region = result["w_kappa0"]
-    assert region["area"] == pytest.approx(region["area_grid"] / 2, rel=0.02)
+    assert region["area"] == pytest.approx(region["area_grid"], rel=0.02)
+    assert region["rectangle_region_area"] == pytest.approx(region["area_grid"] / 2, rel=0.02)
     notes = "\n".join(outcome.all_notes)
     assert "both pressure angles are 90° everywhere" in notes and "above a gap" in notes
 

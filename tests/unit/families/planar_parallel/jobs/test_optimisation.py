@@ -158,14 +158,16 @@ class TestWorkedExamples:
     def test_data_files(self, name: str, request: pytest.FixtureRequest) -> None:
         outcome, _ = request.getfixturevalue(name)
         rows = list(csv.DictReader(io.StringIO(artifact(outcome, "sweep.csv").decode())))
+        # Normalised lengths: l1 is the unit, named so in every column.
         assert list(rows[0]) == [
-            "delta", "e", "h", "b", "H_prime", "S", "S_over_S_max", "mean_inverse_condition",
-            "eta", "min_pressure_angle_deg", "found",
+            "delta [-]", "e [l1]", "h [l1]", "b [l1]", "H_prime [l1]", "S [l1^2]",
+            "S_over_S_max [-]", "mean_inverse_condition [-]", "eta [-]",
+            "min_pressure_angle [deg]", "found [-]",
         ]  # fmt: skip
         assert len(rows) == len(outcome.result["sweep"])
         for row, entry in zip(rows, outcome.result["sweep"], strict=True):
-            assert float(row["eta"]) == pytest.approx(entry["eta"], rel=1e-11)
-            assert row["found"] == "1"
+            assert float(row["eta [-]"]) == pytest.approx(entry["eta"], rel=1e-11)
+            assert row["found [-]"] == "1"
         with np.load(io.BytesIO(artifact(outcome, "optimisation.npz"))) as npz:
             deltas = [row["delta"] for row in outcome.result["sweep"]]
             np.testing.assert_allclose(npz["sweep_delta"], deltas)
@@ -174,6 +176,12 @@ class TestWorkedExamples:
             assert npz["fig7_limits"].shape == (npz["fig7_allowable_angles_deg"].size, 301)
             limit = outcome.result["inverse_condition_limit"]
             assert float(npz["inverse_condition_limit"]) == limit
+            axes, units = json.loads(str(npz["axes"])), json.loads(str(npz["units"]))
+            assert axes["map_inverse_condition"] == ["map_y", "map_x"]
+            assert axes["sweep_eta"] == ["sweep_delta"]
+            assert units["map_x"] == "l1" and units["sweep_S"] == "l1^2"
+            assert set(units) == set(npz.files) - {"axes", "units", "metadata"}
+            assert json.loads(str(npz["metadata"]))["process"] == "planar2dof-optimisation"
 
 
 # -- Table I from the paper's inputs ([beta] = 30° / 35°, lambda = 4) -------------------------

@@ -283,6 +283,34 @@ def test_telescopic_region_area_closed_form() -> None:
     exact = e * e * (math.pi - 2.0 * g + math.sin(2.0 * g)) / math.sin(g) ** 2
     region = kappa_region_boundary(Architecture("telescopic-leg", 1.0, 1.0, e), limit)
     assert region.area == pytest.approx(exact, rel=1e-3)
+    # The whole set is that lobe and its mirror image above the base.
+    assert region.whole_area == pytest.approx(2.0 * exact, rel=1e-3)
+
+
+@settings(max_examples=12, deadline=None)
+@given(
+    st.floats(0.5, 2.0),
+    st.floats(0.5, 2.5),
+    st.floats(0.0, 1.5),
+    st.sampled_from([(1, -1), (1, 1), (-1, 1)]),
+    st.floats(0.2, 0.8),
+)
+def test_the_whole_area_is_every_point_above_the_limit(
+    l1: float, l2: float, e: float, mode: tuple[int, int], limit: float
+) -> None:
+    """Against an independent count of grid cells over the reach (the slow way)."""
+    arch = Architecture("proximal-arm", l1, l2, e)
+    region = kappa_region_boundary(arch, limit, mode)
+    reach = l1 + l2
+    x = np.linspace(-(reach - e), reach - e, 801)
+    y = np.linspace(-reach, reach, 801)
+    cmap = conditioning_map(arch, x, y, mode)
+    counted = workspace_area(
+        cmap.reachable & (np.nan_to_num(cmap.inverse_condition) >= limit), x, y
+    )
+    cell = (x[1] - x[0]) * (y[1] - y[0])
+    assert region.whole_area >= region.area - 1e-9
+    assert region.whole_area == pytest.approx(counted, rel=0.03, abs=400 * cell)
 
 
 # --- bad parameters -------------------------------------------------------------------

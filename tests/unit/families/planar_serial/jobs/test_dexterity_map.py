@@ -104,7 +104,9 @@ class TestWorkedExamples:
     def test_csv_has_one_row_per_node(self, example: str, request: pytest.FixtureRequest) -> None:
         outcome, _ = request.getfixturevalue(example)
         rows = list(csv.reader(io.StringIO(artifact(outcome, "dexterity_map.csv").decode())))
-        assert rows[0] == ["x", "y", "distance", "d_z", "D", "region"]
+        assert rows[0] == [
+            "x [units]", "y [units]", "distance [units]", "d_z [-]", "D [-]", "region [-]"
+        ]  # fmt: skip
         assert len(rows) - 1 == 201**2
 
     def test_csv_and_npz_agree(self, example: str, request: pytest.FixtureRequest) -> None:
@@ -119,6 +121,15 @@ class TestWorkedExamples:
             np.testing.assert_allclose(data[:201, 0], npz["x"], rtol=1e-11)
             np.testing.assert_allclose(data[::201, 1], npz["y"], rtol=1e-11)
             np.testing.assert_array_equal(npz["links"], [15.0, 14.0, 8.0])
+            assert json.loads(str(npz["axes"]))["d_z"] == ["y", "x"]
+            units = json.loads(str(npz["units"]))
+            assert (
+                units["x"] == "units" and units["d_z"] == "-" and units["joint_limits_deg"] == "deg"
+            )
+            assert set(units) == set(npz.files) - {"axes", "units", "metadata"}
+            meta = json.loads(str(npz["metadata"]))
+            assert meta["process"] == "planar3r-dexterity-map"
+            assert meta["inputs"]["links"] == [15.0, 14.0, 8.0]
 
     def test_summary_counts_the_map(self, example: str, request: pytest.FixtureRequest) -> None:
         outcome, _ = request.getfixturevalue(example)

@@ -140,12 +140,17 @@ def test_fig_5_notes(fig_5: tuple[JobOutcome, RecordingContext]) -> None:
 def test_csv_and_npz(fig_5: tuple[JobOutcome, RecordingContext]) -> None:
     outcome, _ = fig_5
     rows = list(csv.reader(io.StringIO(artifact(outcome, "design_space.csv").decode())))
-    assert rows[0] == ["beta_deg", "gamma_deg", "f_min", "f_max", "D1_deg", "D2_deg",
-                       "degenerate", "empty"]  # fmt: skip
+    assert rows[0] == ["beta [deg]", "gamma [deg]", "f_min [-]", "f_max [-]", "D1 [deg]",
+                       "D2 [deg]", "degenerate [-]", "empty [-]"]  # fmt: skip
     assert [r[0] for r in rows[1:]] == ["60", "75", "90"] and rows[1][6] == "1"
     with np.load(io.BytesIO(artifact(outcome, "design_space.npz"))) as npz:
         assert npz["corners_deg"].shape == (3, 4, 2)
         assert npz["index_map_mean_square"].shape == (31, 31)
+        axes, units = json.loads(str(npz["axes"])), json.loads(str(npz["units"]))
+        assert axes["D1_deg"] == ["beta_deg"] and axes["corners_deg"][0] == "beta_deg"
+        assert units["D1_deg"] == "deg" and units["f_min"] == "-"
+        assert set(units) == set(npz.files) - {"axes", "units", "metadata"}
+        assert json.loads(str(npz["metadata"]))["process"] == "spm-design-space"
 
 
 # -- Example III: identical platforms, limited torsion ---------------------------------

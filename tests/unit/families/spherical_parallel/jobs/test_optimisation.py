@@ -174,7 +174,13 @@ def test_csv_and_npz(table_1: tuple[JobOutcome, RecordingContext]) -> None:
     outcome, _ = table_1
     data = next(a.data for a in outcome.artifacts if a.name == "optimisation_starts.csv")
     rows = list(csv.reader(io.StringIO(data.decode())))
-    assert rows[0][:2] == ["start", "alpha1_start_deg"] and len(rows) == 9
+    assert rows[0] == [
+        "start [-]", "alpha1_start [deg]", "alpha2_start [deg]", "beta_start [deg]",
+        "gamma_start [deg]", "alpha1 [deg]", "alpha2 [deg]", "beta [deg]", "gamma [deg]",
+        "converged [-]", "status [-]", "nfev [-]", "evaluations [-]", "feasible [-]",
+        "mean_square_inverse_condition [-]",
+    ]  # fmt: skip
+    assert len(rows) == 9
     npz_bytes = next(a.data for a in outcome.artifacts if a.name == "optimisation.npz")
     with np.load(io.BytesIO(npz_bytes)) as npz:
         assert npz["optimum_inverse_condition"].shape == (144,)
@@ -182,6 +188,10 @@ def test_csv_and_npz(table_1: tuple[JobOutcome, RecordingContext]) -> None:
         assert np.mean(npz["optimum_inverse_condition"] ** 2) == pytest.approx(
             outcome.result["optimum"]["mean_square_inverse_condition"], abs=1e-12
         )
+        axes, units = json.loads(str(npz["axes"])), json.loads(str(npz["units"]))
+        assert axes["optimum_theta_deg"] == ["sample", "leg"] and units["optimum_deg"] == "deg"
+        assert set(units) == set(npz.files) - {"axes", "units", "metadata"}
+        assert json.loads(str(npz["metadata"]))["process"] == "spm-optimisation"
 
 
 # -- Table 2: the Asada-Granito wrist, 90° cone -----------------------------------------
