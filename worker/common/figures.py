@@ -11,6 +11,8 @@ another job's figure).
 from __future__ import annotations
 
 import io
+from collections.abc import Callable
+from typing import Any
 
 import numpy as np
 from matplotlib import rc_context
@@ -18,7 +20,16 @@ from matplotlib.figure import Figure
 
 from worker.contract import Artifact
 
-__all__ = ["RASTER_DPI", "bad_figure_argument", "figure_artifacts", "plain_text"]
+__all__ = [
+    "RASTER_DPI",
+    "bad_figure_argument",
+    "categorical",
+    "contour_labels",
+    "dimensionless",
+    "explained_constant",
+    "figure_artifacts",
+    "plain_text",
+]
 
 #: Resolution of the PNG, and of any rasterised layer (heat-map images) inside the SVG.
 RASTER_DPI = 150
@@ -62,3 +73,67 @@ def bad_figure_argument(name: str, where: str, expected: str, got: str) -> Value
 def plain_text(text: str) -> str:
     """Text shown literally: a user's ``$`` must not start mathtext."""
     return text.replace("$", r"\$")
+
+
+def dimensionless(*axes: Any) -> None:
+    """Declare axes (``ax.xaxis``, a colour bar's ``cbar.ax.yaxis``) whose quantity is a
+    pure number (1/kappa, an index, a fraction): their labels need no unit.  The figure
+    check (tests/figure_check.py) reads the declaration."""
+    for axis in axes:
+        axis.dexlab_dimensionless = True
+
+
+def categorical(*axes: Any) -> None:
+    """Declare axes whose ticks are names (chains, links, starts): no unit."""
+    dimensionless(*axes)
+
+
+def explained_constant(ax: Any, why: str | None = None) -> None:
+    """Say on ``ax`` why the field it shows may be the same everywhere (the figure check
+    refuses a constant field otherwise): ``why`` is drawn on it; None when the field's
+    cells are labelled already (a table)."""
+    ax.dexlab_constant_explained = True
+    if why is None:
+        return
+    ax.text(
+        0.5, 0.5, why, transform=ax.transAxes, ha="center", va="center", fontsize=9,
+        wrap=True, bbox={"boxstyle": "round", "facecolor": "white", "alpha": 0.85},
+    )  # fmt: skip
+
+
+def contour_labels(
+    ax: Any,
+    lines: Any,
+    *,
+    margin: float = 0.05,
+    keep: Callable[[float, float], bool] | None = None,
+    **kwargs: Any,
+) -> list[Any]:
+    """``ax.clabel(lines, **kwargs)``, keeping only readable labels: none within
+    ``margin`` (a fraction of the view) of the axes' edge, where it would be clipped or
+    run into a title, none where ``keep(x, y)`` (data coordinates) is false, and every
+    label upright (rotations in [-90°, 90°]).  Labels are placed once to find where they
+    would go, then again at the places kept, so no contour line keeps a gap for a label
+    that was dropped."""
+    inline = kwargs.pop("inline", True)
+    probe = list(ax.clabel(lines, inline=False, **kwargs))
+    (x0, x1), (y0, y1) = sorted(ax.get_xlim()), sorted(ax.get_ylim())
+    dx, dy = margin * (x1 - x0), margin * (y1 - y0)
+    places = []
+    for text in probe:
+        x, y = (float(v) for v in text.get_position())
+        inside = x0 + dx <= x <= x1 - dx and y0 + dy <= y <= y1 - dy
+        if inside and (keep is None or keep(x, y)):
+            places.append((x, y))
+        text.remove()
+    for attribute in ("labelTexts", "labelCValues", "labelXYs"):
+        getattr(lines, attribute, []).clear()
+    if not places:
+        return []
+    kwargs.pop("levels", None)
+    texts = list(ax.clabel(lines, manual=places, inline=inline, **kwargs))
+    for text in texts:
+        angle = text.get_rotation() % 360.0
+        if 90.0 < angle < 270.0:
+            text.set_rotation(angle - 180.0)
+    return texts

@@ -234,7 +234,8 @@ def _artifacts(
             loops=structure.loops,
             loop_lengths=tuple(tuple(_floats(loop)) for loop in structure.loop_lengths),
             caption=f"{entry['links']} links, {entry['joints']} joints, mobility "
-            f"{entry['mobility']} · P_norm = {entry['P_normalized']:.5g} · Q = {entry['Q']:.6g}",
+            f"{entry['mobility']} · $P_{{\\mathrm{{norm}}}}$ = {entry['P_normalized']:.4g} · "
+            f"$Q$ = {entry['Q']:.4g}",
         )
         for entry, structure in zip(entries, structures, strict=True)
     ]

@@ -2,14 +2,16 @@
 
 from __future__ import annotations
 
+import math
 from collections.abc import Sequence
 
 import numpy as np
 from matplotlib.axes import Axes
 from matplotlib.figure import Figure
 from matplotlib.patches import Patch
+from matplotlib.ticker import MaxNLocator
 
-from worker.common.figures import plain_text
+from worker.common.figures import categorical, plain_text
 from worker.families.chains.plots.graphs import FloatArray, bad_argument
 
 __all__ = ["parallelism_bars_figure"]
@@ -26,10 +28,29 @@ def _ranks(values: FloatArray, descending: bool) -> list[int]:
     ]
 
 
+def _scale(values: FloatArray) -> tuple[float, str]:
+    """A power of ten that brings the largest value into [1, 1000), and its mathtext
+    (empty for 1): the axis label carries it, not the axis end."""
+    top = float(np.max(np.abs(values))) if values.size else 0.0
+    if top == 0.0 or 1e-2 <= top < 1e4:
+        return 1.0, ""
+    exponent = math.floor(math.log10(top))
+    exponent -= exponent % 3
+    return 10.0**exponent, f"$10^{{{exponent}}}$"
+
+
 def _bar_panel(
-    ax: Axes, names: Sequence[str], values: FloatArray, descending: bool, label: str, axis: str
+    ax: Axes,
+    names: Sequence[str],
+    raw: FloatArray,
+    descending: bool,
+    label: str,
+    quantity: str,
+    unit: str,
 ) -> None:
-    ranks = _ranks(values, descending)
+    ranks = _ranks(raw, descending)
+    factor, power = _scale(raw)
+    values = raw / factor
     y = np.arange(len(names))
     colours = [_BEST_COLOUR if r == 1 else _OTHER_COLOUR for r in ranks]
     ax.barh(y, values, color=colours, height=0.6, zorder=2)
@@ -38,7 +59,7 @@ def _bar_panel(
         ax.text(
             value + 0.015 * span,
             yi,
-            f"{value:.6g}   #{rank}",
+            f"{value:.4g}   #{rank}",
             va="center",
             ha="left",
             fontsize=9,
@@ -48,10 +69,11 @@ def _bar_panel(
     ax.set_yticks(y, [plain_text(n) for n in names], fontsize=10)
     ax.invert_yaxis()
     ax.set_xlim(0.0, span * 1.45)
-    ax.ticklabel_format(axis="x", style="sci", scilimits=(-3, 4))
+    ax.xaxis.set_major_locator(MaxNLocator(4))
     ax.grid(axis="x", color="0.9", zorder=0)
     ax.set_title(label, fontsize=11)
-    ax.set_xlabel(axis, fontsize=10)
+    scaled = f"{power} {unit}".strip() if unit != "-" or not power else power
+    ax.set_xlabel(f"{quantity} [{scaled}]", fontsize=10)
 
 
 def parallelism_bars_figure(
@@ -85,18 +107,23 @@ def parallelism_bars_figure(
     fig = Figure(figsize=(10.0, 2.0 + 0.55 * len(names)), layout="constrained")
     left, right = fig.add_subplot(1, 2, 1), fig.add_subplot(1, 2, 2)
     _bar_panel(
-        left, names, p_arr, True, "normalised P  (larger: more uniform rigidity)",
-        "P of l / sum(l), eq 1 (no unit)",
+        left, names, p_arr, True, "normalised $P$  (larger: more uniform rigidity)",
+        r"$P$ of $l / \sum l$ (eq 1)", "-",
     )  # fmt: skip
-    q_label = "Q of normalised lengths" if q_normalized else "Q"
-    q_axis = (
-        "Q of l / sum(l), eq 3 (no unit)"
-        if q_normalized
-        else f"Q, eq 3 [{plain_text(length_unit)}⁴]"
+    if q_normalized:
+        q_title, q_quantity, q_unit = (
+            "$Q$ of normalised lengths",
+            r"$Q$ of $l / \sum l$ (eq 3)",
+            "-",
+        )
+    else:
+        q_title, q_quantity, q_unit = "$Q$", "$Q$ (eq 3)", f"{plain_text(length_unit)}$^4$"
+    _bar_panel(
+        right, names, q_arr, False, f"{q_title}  (smaller: more parallel)", q_quantity, q_unit
     )
-    _bar_panel(right, names, q_arr, False, f"{q_label}  (smaller: more parallel)", q_axis)
     right.set_yticklabels([])
     left.set_ylabel("chain", fontsize=10)
+    categorical(left.yaxis, right.yaxis)
     fig.legend(
         handles=[
             Patch(color=_BEST_COLOUR, label="best of the measure (rank #1; ties share a rank)"),

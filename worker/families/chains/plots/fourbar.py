@@ -12,7 +12,7 @@ from matplotlib.figure import Figure
 from matplotlib.patches import Patch
 from numpy.typing import NDArray
 
-from worker.common.figures import plain_text
+from worker.common.figures import categorical, explained_constant, plain_text
 from worker.families.chains.plots.graphs import FloatArray, bad_argument
 
 __all__ = ["fourbar_figure"]
@@ -138,6 +138,8 @@ def _turns_panel(
     ax.set_title("does link (column) turn fully\nrelative to link (row)?", fontsize=9.5)
     ax.set_xlabel("link that moves")
     ax.set_ylabel("link held fixed")
+    categorical(ax.xaxis, ax.yaxis)
+    explained_constant(ax)  # a table: every cell says "full turn" or "rocks"
     ax.tick_params(length=0)
 
 

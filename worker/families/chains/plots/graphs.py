@@ -24,6 +24,7 @@ import numpy as np
 from matplotlib.artist import Artist
 from matplotlib.axes import Axes
 from matplotlib.figure import Figure
+from matplotlib.layout_engine import ConstrainedLayoutEngine
 from matplotlib.lines import Line2D
 from matplotlib.patches import Patch, Polygon
 from matplotlib.path import Path
@@ -66,6 +67,7 @@ class ChainGraph:
     joints: tuple[tuple[str, str], ...]
     loops: tuple[tuple[str, ...], ...]
     loop_lengths: tuple[tuple[float, ...], ...]
+    #: A line under the panel, built by the job (it may use mathtext; never user text).
     caption: str = ""
 
 
@@ -293,8 +295,8 @@ def _draw_graph(ax: Axes, graph: ChainGraph) -> None:
     for spine in ax.spines.values():
         spine.set_color("0.85")
     ax.set_title(plain_text(graph.name), fontsize=11, fontweight="bold")
-    if graph.caption:
-        ax.set_xlabel(plain_text(graph.caption), fontsize=8, color="0.3")
+    if graph.caption:  # built by the job, mathtext allowed (no user text)
+        ax.set_xlabel(graph.caption, fontsize=8, color="0.3")
 
 
 def chain_graphs_figure(
@@ -314,7 +316,9 @@ def chain_graphs_figure(
             )
     columns = min(len(graphs), _MAX_COLUMNS)
     rows = math.ceil(len(graphs) / columns)
-    fig = Figure(figsize=(4.1 * columns, 4.3 * rows + 0.6), layout="constrained")
+    # The extra space between rows keeps each caption off the next row's titles.
+    layout = ConstrainedLayoutEngine(h_pad=0.1, hspace=0.07)
+    fig = Figure(figsize=(4.1 * columns, 4.4 * rows + 0.6), layout=layout)
     for index, graph in enumerate(graphs):
         _draw_graph(fig.add_subplot(rows, columns, index + 1), graph)
     fig.suptitle(plain_text(title), fontsize=13, fontweight="bold")

@@ -59,16 +59,17 @@ def map_grid(spec: GridSpec, arch: pp.Architecture) -> WorkspaceGrid:
 
 
 def describe_architecture(spec: ConditioningMapSpec, arch: pp.Architecture) -> str:
-    """A one-line description for plot subtitles, e.g. 'proximal-arm, l1 = 1, ...'."""
+    """A one-line description for plot subtitles (mathtext), e.g. 'proximal-arm,
+    $l_1$ = 1, ...'."""
     parts: list[str] = [spec.actuation]
     if spec.actuation != "telescopic-leg":
         if spec.actuation == "proximal-arm":
-            parts.append(f"l1 = {arch.l1:.4g}")
-        parts.append(f"l2 = {arch.l2:.4g}")
+            parts.append(f"$l_1$ = {arch.l1:.4g}")
+        parts.append(f"$l_2$ = {arch.l2:.4g}")
     if spec.actuation != "linear-drive":
-        parts.append(f"e = {arch.e:.4g}" + (" (eq 12)" if spec.architecture else ""))
+        parts.append(f"$e$ = {arch.e:.4g}" + (" (eq 12)" if spec.architecture else ""))
     if spec.actuation == "proximal-arm":
-        parts.append(f"delta = {arch.l2 / arch.l1:.4g}")
+        parts.append(rf"$\delta$ = {arch.l2 / arch.l1:.4g}")
     m1, m2 = spec.working_mode
     parts.append(f"working mode [{m1:+d}, {m2:+d}]")
     return ", ".join(parts)

@@ -244,14 +244,20 @@ def _plots(
     progress.report(48.0, "plot of 1/kappa")
     conditioning = plots.inverse_condition_map_figure(
         grid.x, grid.y, cmap.inverse_condition,
-        title=f"Conditioning index 1/κ, {spec.actuation} robot", **common,
+        title=rf"Conditioning index $1/\kappa$, {spec.actuation} robot", **common,
     )  # fmt: skip
     first = figure_artifacts(conditioning, "inverse_condition_map", FIGURE_4_TITLE)
     progress.report(59.0, "plot of beta_min")
     pressure = plots.pressure_angle_map_figure(
         grid.x, grid.y, np.degrees(cmap.min_pressure_angle),
         inverse_condition=cmap.inverse_condition,
-        title=f"Minimum pressure angle β_min, {spec.actuation} robot", **common,
+        title=rf"Minimum pressure angle $\beta_{{\min}}$, {spec.actuation} robot",
+        constant_reason=(
+            "both pressure angles are 90° everywhere: a telescopic leg pushes along itself"
+            if spec.actuation == "telescopic-leg"
+            else None
+        ),
+        **common,
     )  # fmt: skip
     second = figure_artifacts(pressure, "pressure_angle_map", FIGURE_5_TITLE)
     return (*first, *second)

@@ -100,8 +100,10 @@ def _figure_arrays(
 
 def _design_text(row: pp.SweepRow) -> str:
     rect = row.rectangle
-    return (f"delta = {row.delta:.4g}, e = {row.e:.4f}: b = {rect.b:.4f}, h = {rect.h:.4f}, "
-            f"H' = {rect.H_prime:.4f}, S = {rect.S:.4f} (l1 = 1)")  # fmt: skip
+    return (
+        rf"$\delta$ = {row.delta:.4g}, $e$ = {row.e:.4f}: $b$ = {rect.b:.4f}, "
+        rf"$h$ = {rect.h:.4f}, $H'$ = {rect.H_prime:.4f}, $S$ = {rect.S:.4f} ($l_1$ = 1)"
+    )
 
 
 def _plots(
@@ -118,11 +120,12 @@ def _plots(
     fig7 = plots.conditioning_limit_figure(
         arrays["fig7_deltas"], arrays["fig7_allowable_angles_deg"], arrays["fig7_limits"],
         chosen_angle_deg=angle, chosen_limit=limit, chosen_delta=limit_delta,
-        title="Conditioning limit 1/κ0 from the allowable pressure angle [β] (Fig. 7)",
+        title=r"Conditioning limit $1/\kappa_0$ from the allowable pressure angle $[\beta]$ "
+        "(Fig. 7)",
     )  # fmt: skip
     artifacts = list(figure_artifacts(fig7, "conditioning_limit",
                                       "1/kappa0 against [beta] and delta (Fig. 7)"))  # fmt: skip
-    setting = f"1/κ0 = {limit:.5g}, λ = {spec.aspect_ratio:g}"
+    setting = rf"$1/\kappa_0$ = {limit:.5g}, $\lambda$ = {spec.aspect_ratio:g}"
     if spec.delta is None and len(outcome.rows) > 1:
         progress.report(87.0, "plot of the indices against delta (Fig. 8)")
         columns = _sweep_columns(outcome)
@@ -130,8 +133,8 @@ def _plots(
         fig8 = plots.design_indices_figure(
             columns["delta"], columns["S_over_S_max"], columns["mean_inverse_condition"],
             columns["eta"], optimum_delta=optimum, window=outcome.window,
-            title="Performance indices against δ (Fig. 8)",
-            subtitle=f"{setting}, mean 1/κ on {spec.mean_mesh} x {spec.mean_mesh} nodes",
+            title=r"Performance indices against $\delta$ (Fig. 8)",
+            subtitle=rf"{setting}, mean $1/\kappa$ on {spec.mean_mesh} × {spec.mean_mesh} nodes",
         )  # fmt: skip
         artifacts += figure_artifacts(
             fig8, "design_indices", "S/S_max, mean 1/kappa and eta against delta (Fig. 8)"
@@ -151,7 +154,7 @@ def _design_plots(
         arrays["rectangle_x"] / rect.b, (arrays["rectangle_y"] + rect.H_prime) / rect.b,
         arrays["rectangle_inverse_condition"], arrays["rectangle_min_pressure_angle_deg"],
         inverse_condition_limit=limit, allowable_angle_deg=spec.allowable_pressure_angle_deg,
-        title=f"1/κ and β_min over the rectangle W_λ (Fig. 9), {setting}",
+        title=r"$1/\kappa$ and $\beta_{\min}$ over the rectangle $W_\lambda$ (Fig. 9)",
         subtitle=_design_text(row),
     )  # fmt: skip
     fig9_files = figure_artifacts(
@@ -164,7 +167,8 @@ def _design_plots(
         inverse_condition_limit=limit, rectangle=(rect.b, rect.h, rect.H_prime),
         joints=[[e, 0.0], [-e, 0.0]], isotropic_point=pp.isotropic_point(
             pp.isotropic_architecture(row.delta)),
-        title=f"The rectangle W_λ inside W_κ0 (Fig. 6), {setting}", subtitle=_design_text(row),
+        title=rf"The rectangle $W_\lambda$ inside $W_{{\kappa 0}}$ (Fig. 6), {setting}",
+        subtitle=_design_text(row),
     )  # fmt: skip
     return (
         *fig9_files,

@@ -5,13 +5,16 @@ returns a :class:`matplotlib.figure.Figure`; :func:`worker.common.figures.figure
 turns it into PNG/SVG bytes.  Conventions shared by all figures:
 
 * grids: ``x`` (nx,), ``y`` (ny,) node coordinates, values (ny, nx); NaN marks a node
-  unreachable in the working mode and shows as the grey background;
+  unreachable in the working mode and shows hatched;
 * two banded colour scales: viridis over 1/kappa in [0, 1] (bands of 0.05), cividis over
   beta_min in [0°, 90°] (bands of 5°), with labelled contour lines;
 * the red line is the boundary of W_kappa0 = {1/kappa >= 1/kappa0}; black squares the
   actuated joints (±e, 0); the white star the isotropic point.
 
-User-supplied text (titles, labels, units) is shown literally, ``$`` included.
+Titles and subtitles are the caller's, mathtext allowed (a caller passes user text
+through :func:`worker.common.figures.plain_text`); point labels and the length unit are
+shown literally, ``$`` included.  A field that is the same everywhere says why
+(``constant_reason``).
 
 This module holds the conditioning-map figures (Figs 4-5); the optimisation's figures
 (Figs 7-9 and the rectangle in W_kappa0) are in :mod:`worker.families.planar_parallel.plots.design`,
@@ -26,13 +29,14 @@ import numpy as np
 from matplotlib.figure import Figure
 from numpy.typing import ArrayLike
 
-from worker.common.figures import plain_text
+from worker.common.figures import explained_constant, plain_text
 from worker.families.planar_parallel.plots.panels import (
     INVERSE_CONDITION,
     MIN_PRESSURE_ANGLE,
     ColourScale,
     checked_grid,
     checked_overlay,
+    colour_bar,
     contour_panel,
     map_figure_size,
     overlay_legend,
@@ -54,6 +58,7 @@ def inverse_condition_map_figure(
     title: str,
     subtitle: str = "",
     length_unit: str = "units",
+    constant_reason: str | None = None,
 ) -> Figure:
     """Contours of 1/kappa over the workspace with W_kappa0 outlined (the paper's Fig. 4).
 
@@ -66,6 +71,7 @@ def inverse_condition_map_figure(
         inverse_condition=inverse_condition, limit=inverse_condition_limit, points=points,
         point_labels=point_labels, joints=joints, isotropic_point=isotropic_point,
         title=title, subtitle=subtitle, length_unit=length_unit,
+        constant_reason=constant_reason,
     )  # fmt: skip
 
 
@@ -83,6 +89,7 @@ def pressure_angle_map_figure(
     title: str,
     subtitle: str = "",
     length_unit: str = "units",
+    constant_reason: str | None = None,
 ) -> Figure:
     """Contours of beta_min = min(beta_1, beta_2) in degrees (the paper's Fig. 5).
 
@@ -95,6 +102,7 @@ def pressure_angle_map_figure(
         inverse_condition=inverse_condition, limit=inverse_condition_limit, points=points,
         point_labels=point_labels, joints=joints, isotropic_point=isotropic_point,
         title=title, subtitle=subtitle, length_unit=length_unit,
+        constant_reason=constant_reason,
     )  # fmt: skip
 
 
@@ -114,6 +122,7 @@ def _map_figure(
     title: str,
     subtitle: str,
     length_unit: str,
+    constant_reason: str | None,
 ) -> Figure:
     grid = checked_grid(x, y, values, where)
     outline = None
@@ -126,15 +135,16 @@ def _map_figure(
         where, outline=outline, outline_label=outline_label, points=points,
         labels=point_labels, joints=joints, isotropic_point=isotropic_point,
     )  # fmt: skip
-    fig = Figure(figsize=map_figure_size(grid, axes_width=6.0), layout="constrained")
+    fig = Figure(figsize=map_figure_size(grid, axes_width=6.0), layout="compressed")
     ax = fig.add_subplot()
     unit = plain_text(length_unit)
     contour_panel(ax, grid, scale, overlay, x_label=f"x [{unit}]", y_label=f"y [{unit}]")
     if subtitle:
-        ax.set_title(plain_text(subtitle), fontsize=10, color="0.25")
-    bar = fig.colorbar(scale.mappable(), ax=ax, pad=0.02, aspect=30)
-    bar.set_label(scale.label, fontsize=11)
-    bar.set_ticks(scale.levels[::2])
-    fig.suptitle(plain_text(title), fontsize=13, fontweight="bold")
+        ax.set_title(subtitle, fontsize=10, color="0.25")
+    colour_bar(ax, scale)
+    finite = grid.values[np.isfinite(grid.values)]
+    if finite.size and float(np.ptp(finite)) == 0.0:
+        explained_constant(ax, constant_reason or f"{finite[0]:g} at every reachable point")
+    fig.suptitle(title, fontsize=13, fontweight="bold")
     overlay_legend(fig, overlay, unreachable=bool(np.isnan(grid.values).any()), ncols=3)
     return fig

@@ -22,13 +22,14 @@ import numpy as np
 from matplotlib.figure import Figure
 from numpy.typing import ArrayLike
 
-from worker.common.figures import bad_figure_argument, plain_text
+from worker.common.figures import bad_figure_argument, dimensionless
 from worker.families.planar_parallel.plots.panels import (
     INVERSE_CONDITION,
     FloatArray,
     ScalarGrid,
     checked_grid,
     checked_overlay,
+    colour_bar,
     contour_panel,
     map_figure_size,
     overlay_legend,
@@ -95,8 +96,12 @@ def conditioning_limit_figure(
         label = rf"$[\beta]$ = {beta:g}°"
         if np.isfinite(curve).any():
             k = int(np.nanargmax(curve))
-            ax.plot(d[k], curve[k], "o", ms=4.5, color=colour, zorder=4)
-            label += rf": max {curve[k]:.4f} at $\delta$ = {d[k]:.3g}"
+            finite = np.flatnonzero(np.isfinite(curve))
+            if finite[0] < k < finite[-1]:  # a maximum, not the end of the range drawn
+                ax.plot(d[k], curve[k], "o", ms=4.5, color=colour, zorder=4)
+                label += rf": max {curve[k]:.4f} at $\delta$ = {d[k]:.4g}"
+            else:
+                label += rf": no maximum for $\delta \leq$ {d[finite[-1]]:.4g}"
         ax.plot(d, curve, color=colour, lw=2.6 if chosen else 1.4, label=label,
                 zorder=3 if chosen else 2)  # fmt: skip
     ax.axhline(chosen_limit, color="0.25", ls="--", lw=1.0, zorder=1)
@@ -114,13 +119,14 @@ def conditioning_limit_figure(
     ax.set_ylim(0.0, 1.0)
     ax.set_xlabel(_DELTA_LABEL, fontsize=11)
     ax.set_ylabel(r"conditioning limit $1/\kappa_0$ (eqs 17, 7)", fontsize=11)
+    dimensionless(ax.xaxis, ax.yaxis)
     ax.grid(alpha=0.3)
     ax.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize=9,
               title="allowable pressure angle (dots: maxima)", title_fontsize=9.5,
               frameon=False)  # fmt: skip
     ax.set_title(r"1/$\kappa_0$ = 1/$\kappa$ at $(\pm e, y_0)$, $y_0$ of eq (17), isotropic "
                  r"design of eq (12)", fontsize=10, color="0.25")  # fmt: skip
-    fig.suptitle(plain_text(title), fontsize=13, fontweight="bold")
+    fig.suptitle(title, fontsize=13, fontweight="bold")
     return fig
 
 
@@ -180,11 +186,12 @@ def design_indices_figure(
     ax.set_xlim(d[0], d[-1]) if d.size > 1 else ax.set_xlim(d[0] - 0.1, d[0] + 0.1)
     ax.set_xlabel(_DELTA_LABEL, fontsize=11)
     ax.set_ylabel("performance indices", fontsize=11)
+    dimensionless(ax.xaxis, ax.yaxis)
     ax.grid(alpha=0.3)
     if subtitle:
-        ax.set_title(plain_text(subtitle), fontsize=10, color="0.25")
+        ax.set_title(subtitle, fontsize=10, color="0.25")
     fig.legend(loc="outside lower center", ncols=2, fontsize=9.5, frameon=False)
-    fig.suptitle(plain_text(title), fontsize=13, fontweight="bold")
+    fig.suptitle(title, fontsize=13, fontweight="bold")
     return fig
 
 
@@ -236,15 +243,13 @@ def rectangle_workspace_figure(
         rectangle_label=r"rectangle $W_\lambda$ (b x h, centre (0, -H'))",
     )  # fmt: skip
     view = _view_around(grid, inverse_condition_limit, box)
-    fig = Figure(figsize=map_figure_size(view, axes_width=6.4), layout="constrained")
+    fig = Figure(figsize=map_figure_size(view, axes_width=6.4), layout="compressed")
     ax = fig.add_subplot()
     contour_panel(ax, grid, INVERSE_CONDITION, overlay, x_label=r"x [$l_1$]",
                   y_label=r"y [$l_1$]", view=view)  # fmt: skip
     if subtitle:
-        ax.set_title(plain_text(subtitle), fontsize=10, color="0.25")
-    bar = fig.colorbar(INVERSE_CONDITION.mappable(), ax=ax, pad=0.02, aspect=30)
-    bar.set_label(INVERSE_CONDITION.label, fontsize=11)
-    bar.set_ticks(INVERSE_CONDITION.levels[::2])
-    fig.suptitle(plain_text(title), fontsize=13, fontweight="bold")
+        ax.set_title(subtitle, fontsize=10, color="0.25")
+    colour_bar(ax, INVERSE_CONDITION)
+    fig.suptitle(title, fontsize=13, fontweight="bold")
     overlay_legend(fig, overlay, unreachable=bool(np.isnan(grid.values).any()), ncols=2)
     return fig

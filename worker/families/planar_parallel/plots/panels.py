@@ -23,7 +23,7 @@ from matplotlib.patches import Rectangle as RectanglePatch
 from matplotlib.patheffects import withStroke
 from numpy.typing import ArrayLike, NDArray
 
-from worker.common.figures import bad_figure_argument, plain_text
+from worker.common.figures import bad_figure_argument, contour_labels, dimensionless, plain_text
 
 if TYPE_CHECKING:
     from matplotlib.artist import Artist
@@ -46,7 +46,9 @@ __all__ = [
 
 FloatArray = NDArray[np.float64]
 
-_UNREACHABLE = "#d9d9d9"
+#: Unreachable points: white, hatched in grey (no band of viridis or cividis is hatched).
+_UNREACHABLE_FILL: dict[str, Any] = {"facecolor": "white", "edgecolor": "0.72", "hatch": "////",
+                                     "lw": 0.0}  # fmt: skip
 _OUTLINE = "#e8373f"
 _RECTANGLE = "#1f5fbf"
 _HALO = [withStroke(linewidth=4.0, foreground="white")]
@@ -69,6 +71,8 @@ class ColourScale:
     levels: tuple[float, ...]
     line_levels: tuple[float, ...]
     line_format: str
+    #: A pure number (its colour bar needs no unit).
+    dimensionless: bool = False
 
     def restricted(self, low: float, high: float) -> ColourScale:
         """The scale over the bands that hold [low, high] only (more contrast on a narrow
@@ -84,7 +88,7 @@ class ColourScale:
         count = round((hi - lo) / step)
         fine = tuple(np.round(np.linspace(lo, hi, count + 1), 10).tolist())
         lines = tuple(v for v in fine[1:-1:2] if v not in (lo, hi))
-        return ColourScale(self.label, self.cmap, fine, lines, self.line_format)
+        return ColourScale(self.label, self.cmap, fine, lines, self.line_format, self.dimensionless)
 
     def mappable(self) -> ScalarMappable:
         """The scale for a colour bar: one colour per band, NaN transparent."""
@@ -98,9 +102,10 @@ INVERSE_CONDITION = ColourScale(
     levels=tuple(np.round(np.linspace(0.0, 1.0, 21), 10).tolist()),
     line_levels=(0.2, 0.4, 0.6, 0.8, 0.9),
     line_format="%.3g",
+    dimensionless=True,
 )
 MIN_PRESSURE_ANGLE = ColourScale(
-    label=r"minimum pressure angle $\beta_{\min}$ [°] (eq 15)",
+    label=r"minimum pressure angle $\beta_{\min}$ (eq 15) [°]",
     cmap="cividis",
     levels=tuple(float(v) for v in range(0, 95, 5)),
     line_levels=(15.0, 30.0, 45.0, 60.0, 75.0),
@@ -250,8 +255,11 @@ def contour_panel(
     y_label: str,
     view: tuple[float, float, float, float] | None = None,
 ) -> None:
-    """Filled bands, labelled contour lines, then the overlay; equal axes, grey outside."""
-    ax.set_facecolor(_UNREACHABLE)
+    """Filled bands, labelled contour lines, then the overlay; equal axes, hatched where
+    unreachable (no colour of either scale looks like it)."""
+    ax.patch.set(facecolor="white", edgecolor=_UNREACHABLE_FILL["edgecolor"],
+                 hatch=_UNREACHABLE_FILL["hatch"], linewidth=0.0)  # fmt: skip
+
     drawn = grid.strided()
     mappable = scale.mappable()
     if np.isfinite(drawn.values).any():
@@ -260,7 +268,10 @@ def contour_panel(
         filled.set_rasterized(True)  # a fine grid would make a huge SVG
         lines = ax.contour(drawn.x, drawn.y, drawn.values, levels=scale.line_levels,
                            colors="white", linewidths=0.8, alpha=0.9, zorder=1)  # fmt: skip
-        ax.clabel(lines, fmt=scale.line_format, fontsize=8, inline=True)
+        view_box = view if view is not None else _extent(grid)
+        ax.set_xlim(*view_box[:2])
+        ax.set_ylim(*view_box[2:])
+        contour_labels(ax, lines, fmt=scale.line_format, fontsize=8, inline=True)
     if overlay.outline is not None:
         values, level = overlay.outline
         shown = values.strided()
@@ -309,6 +320,20 @@ def _extent(grid: ScalarGrid) -> tuple[float, float, float, float]:
     return float(grid.x[0]), float(grid.x[-1]), float(grid.y[0]), float(grid.y[-1])
 
 
+def colour_bar(ax: Axes, scale: ColourScale, label: str | None = None, ticks: int = 2) -> Any:
+    """The scale's colour bar beside ``ax``, with every ``ticks``-th band edge labelled.
+    In a figure with the "compressed" layout (made for equal-aspect maps) the bar is as
+    tall as the axes."""
+    fig = ax.get_figure()
+    assert fig is not None, "an axes of a figure"
+    bar = fig.colorbar(scale.mappable(), ax=ax, pad=0.02, aspect=30)
+    bar.set_label(label or scale.label, fontsize=11)
+    bar.set_ticks(scale.levels[::ticks])
+    if scale.dimensionless:
+        dimensionless(bar.ax.yaxis)
+    return bar
+
+
 def overlay_legend(fig: Figure, overlay: MapOverlay, *, unreachable: bool, ncols: int) -> None:
     """One legend under the axes naming every overlay element that is drawn."""
     handles: list[Artist] = []
@@ -324,7 +349,7 @@ def overlay_legend(fig: Figure, overlay: MapOverlay, *, unreachable: bool, ncols
     if overlay.points is not None:
         handles.append(Line2D([], [], ls="none", label="given points", **_POINT))
     if unreachable:
-        handles.append(Patch(color=_UNREACHABLE, label="unreachable in this working mode"))
+        handles.append(Patch(label="unreachable in this working mode", **_UNREACHABLE_FILL))
     if handles:
         fig.legend(handles=handles, loc="outside lower center", ncols=ncols, fontsize=9.5,
                    frameon=False, columnspacing=1.4)  # fmt: skip

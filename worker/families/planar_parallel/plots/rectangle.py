@@ -11,13 +11,14 @@ import numpy as np
 from matplotlib.figure import Figure
 from numpy.typing import ArrayLike
 
-from worker.common.figures import plain_text
+from worker.common.figures import contour_labels, dimensionless
 from worker.families.planar_parallel.plots.panels import (
     INVERSE_CONDITION,
     MIN_PRESSURE_ANGLE,
     ScalarGrid,
     checked_grid,
     checked_overlay,
+    colour_bar,
     contour_panel,
 )
 
@@ -54,7 +55,7 @@ def normalised_rectangle_figure(
     height = float(ic.y[-1] - ic.y[0])
     panel_h = min(max(7.0 * height / width, 1.2), 4.5)
     to_scale = 1.0 / MAX_TO_SCALE <= height / width <= MAX_TO_SCALE
-    fig = Figure(figsize=(9.2, 2 * panel_h + 2.4), layout="constrained")
+    fig = Figure(figsize=(9.2, 2 * panel_h + 2.4), layout="compressed")
     axes = fig.subplots(2, 1)
     limit_label = rf"$1/\kappa$ = {inverse_condition_limit:.4g}"
     angle_label = rf"$\beta_{{\min}}$ = {allowable_angle_deg:g}°" if allowable_angle_deg else ""
@@ -71,21 +72,21 @@ def normalised_rectangle_figure(
         if level is not None and finite.size and low < level < float(finite.max()):
             lines = ax.contour(grid.x, grid.y, grid.values, levels=[level], colors=_CHOSEN,
                                linewidths=2.0, zorder=3)  # fmt: skip
-            ax.clabel(lines, fmt={level: label}, fontsize=9, inline=True)
+            contour_labels(ax, lines, fmt={level: label}, fontsize=9, inline=True)
         for kx, ky in _minima(grid):
             ax.plot(grid.x[kx], grid.y[ky], "v", ms=10, color=_CHOSEN, mec="white",
                     clip_on=False, zorder=6)  # fmt: skip
         unit = "°" if base is MIN_PRESSURE_ANGLE else ""
         name = base.label.split(" (")[0]
+        dimensionless(ax.xaxis, ax.yaxis)  # lengths over b
         stretched = "" if to_scale else ", axes not to scale"
         ax.set_title(f"{name}: minimum {low:.4g}{unit} (▼){stretched}", fontsize=10.5)
         if not to_scale:
             ax.set_aspect("auto")
-        bar = fig.colorbar(scale.mappable(), ax=ax, pad=0.015)
-        bar.set_label(name, fontsize=10)
-        bar.set_ticks(scale.levels[:: max(1, (len(scale.levels) - 1) // 6)])
-    fig.suptitle(plain_text(title) + (f"\n{plain_text(subtitle)}" if subtitle else ""),
-                 fontsize=12.5, fontweight="bold")  # fmt: skip
+        colour_bar(ax, scale, f"{name} [{unit}]" if unit else name,
+                   max(1, (len(scale.levels) - 1) // 6))  # fmt: skip
+    fig.suptitle(title + (f"\n{subtitle}" if subtitle else ""), fontsize=12.5,
+                 fontweight="bold")  # fmt: skip
     return fig
 
 

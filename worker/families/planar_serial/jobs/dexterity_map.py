@@ -236,11 +236,23 @@ def _plots(
         task_distances=np.hypot(task_xy[:, 0], task_xy[:, 1]).tolist() if marked else None,
         task_labels=labels if marked else None, title=f"Radial section, {title}",
         length_unit=spec.length_unit, angle_deg=RADIAL_ANGLE_DEG,
+        note=_sampling_note(spec),
     )  # fmt: skip
     return (
         *figure_artifacts(heatmap, "heatmap", "Dexterity d_z over the workspace"),
         *figure_artifacts(surface, "surface", "Dexterity d_z, 3-D surface"),
         *figure_artifacts(section, "radial_section", "Dexterity d_z along a ray from the base"),
+    )
+
+
+def _sampling_note(spec: DexterityMapSpec) -> str:
+    """Under joint limits d_z is sampled: the staircase of the curve is the sampling."""
+    if spec.joint_limits_deg is None:
+        return ""
+    step = spec.orientation_step_deg
+    return (
+        rf"joint-limited $d_z$ sampled every {step:g}° of orientation: it comes in steps "
+        rf"of $1/{round(360.0 / step):d}$ (the staircase)"
     )
 
 

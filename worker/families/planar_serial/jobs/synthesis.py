@@ -57,6 +57,12 @@ __all__ = ["CaseResult", "run_synthesis"]
 FloatArray = NDArray[np.float64]
 CASE_NAMES = {1: "ideal", 2: "l2-l3-swapped", 3: "joint-limited"}
 CASE_LABELS = {1: "Case 1: ideal", 2: "Case 2: l2 and l3 swapped", 3: "Case 3: joint limits"}
+#: The same, as the figure writes them (mathtext).
+FIGURE_CASE_LABELS = {
+    1: "Case 1: ideal",
+    2: "Case 2: $l_2$ and $l_3$ swapped",
+    3: "Case 3: joint limits",
+}
 
 
 @dataclass(frozen=True)
@@ -253,7 +259,7 @@ def _artifacts(
     path = None if spec.trajectory is None else trajectory_path(spec.trajectory)
     panels = [
         plots.CasePanel(
-            label=CASE_LABELS[case.case],
+            label=FIGURE_CASE_LABELS[case.case],
             links=case.links,
             x=grid.x,
             y=grid.y,

@@ -32,7 +32,7 @@ from matplotlib.lines import Line2D
 from matplotlib.patches import Patch
 from numpy.typing import ArrayLike, NDArray
 
-from worker.common.figures import bad_figure_argument, plain_text
+from worker.common.figures import bad_figure_argument, dimensionless, plain_text
 from worker.families.planar_serial.plots.inputs import FloatArray as FloatArray
 from worker.families.planar_serial.plots.inputs import (
     checked_bands,
@@ -67,6 +67,12 @@ _BANDS_LABEL = r"full dexterity $d_z = 1$ (unlimited joints)"
 _CURVE_COLOR = "#2c5d8a"
 _BAND_FILL = "#fef287"  # viridis' d_z = 1 yellow at 55 % on white, made opaque
 _MAX_SURFACE_NODES = 201
+
+
+def _dz_colourbar(bar: Any) -> None:
+    """Label a colour bar of d_z (a fraction of a turn: dimensionless)."""
+    bar.set_label(_DZ_LABEL, fontsize=11)
+    dimensionless(bar.ax.yaxis)
 
 
 @dataclass(frozen=True, eq=False)
@@ -123,7 +129,7 @@ def dexterity_heatmap_figure(
     if joint_limited:
         subtitle += "  ·  $d_z$ sampled under joint limits"
     ax.set_title(subtitle, fontsize=10, color="0.25")
-    fig.colorbar(mappable(), ax=ax, shrink=0.82, pad=0.02).set_label(_DZ_LABEL, fontsize=11)
+    _dz_colourbar(fig.colorbar(mappable(), ax=ax, shrink=0.82, pad=0.02))
     fig.suptitle(plain_text(title), fontsize=13, fontweight="bold")
     radii = ", ".join(f"{r:g}" for r in dmap.region_radii)
     bands_text = r" $\cup$ ".join(f"[{lo:g}, {hi:g}]" for lo, hi in dmap.bands) or "none"
@@ -155,13 +161,14 @@ def dexterity_surface_figure(
     ax.set_xlabel(f"x [{unit}]", fontsize=11, labelpad=8)
     ax.set_ylabel(f"y [{unit}]", fontsize=11, labelpad=8)
     ax.set_zlabel(r"$d_z$", fontsize=11, labelpad=6)
+    dimensionless(ax.zaxis)
     ax.set_zlim(0.0, 1.05)
     span = max(float(np.ptp(xs)), float(np.ptp(ys)))
     ax.set_box_aspect((float(np.ptp(xs)) / span, float(np.ptp(ys)) / span, 0.45), zoom=0.98)
     ax.view_init(elev=32, azim=-58)
     ax.tick_params(labelsize=9)
     # The wide pad keeps the colour bar off the z label, which the layout engine misses.
-    fig.colorbar(colours, ax=ax, shrink=0.6, pad=0.1).set_label(_DZ_LABEL, fontsize=11)
+    _dz_colourbar(fig.colorbar(colours, ax=ax, shrink=0.6, pad=0.1))
     fig.suptitle(plain_text(title), fontsize=13, fontweight="bold")
     return fig
 
@@ -177,12 +184,15 @@ def radial_section_figure(
     title: str,
     length_unit: str = "units",
     angle_deg: float = 0.0,
+    note: str = "",
 ) -> Figure:
     """d_z against the distance d from the base along one ray (the paper's Fig 7).
 
     ``distance`` (n,), ``d_z`` (n,).  The paper's regions 1-4 are shaded and numbered
     above the plot, the full-dexterity bands filled, and task points marked at their
-    distances from the base (with unlimited joints d_z depends on d only).
+    distances from the base (with unlimited joints d_z depends on d only).  ``note``
+    (mathtext allowed) is written under the title: what a reader needs to read the
+    curve, e.g. that sampled values come in steps.
     """
     where = "radial_section_figure"
     dist, dz = np.asarray(distance, dtype=float), np.asarray(d_z, dtype=float)
@@ -214,8 +224,13 @@ def radial_section_figure(
     ax.set_ylabel(r"orientation dexterity $d_z$", fontsize=11)
     right = ax.secondary_yaxis("right", functions=(_dz_to_index, _index_to_dz))
     right.set_ylabel(r"dexterity index $D = d_z/3$", fontsize=11)
+    dimensionless(ax.yaxis, right.yaxis)
     ax.tick_params(labelsize=10)
     right.tick_params(labelsize=10)
+    if note:  # top right: the curve is falling there, the region labels are above
+        ax.text(0.99, 0.97, note, transform=ax.transAxes, ha="right", va="top", fontsize=9,
+                color="0.2", wrap=True, bbox={"boxstyle": "round,pad=0.3", "fc": "white",
+                                              "ec": "0.75", "alpha": 0.9}, zorder=8)  # fmt: skip
     fig.suptitle(plain_text(title), fontsize=13, fontweight="bold")
     handles: list[Artist] = [
         Line2D([], [], color=_CURVE_COLOR, lw=2.2, label=r"$d_z(d)$"),
@@ -252,10 +267,8 @@ def synthesis_cases_figure(
         detail = "$l_1, l_2, l_3$ = " + ", ".join(f"{v:g}" for v in case.links)
         if case.joint_limited:
             detail += " · joint-limited"
-        ax.set_title(f"{plain_text(case.label)}\n{detail}", fontsize=11)
-    for ax in axes[1:]:
-        ax.set_ylabel("")
-    fig.colorbar(mappable(), ax=axes, shrink=0.8, pad=0.015).set_label(_DZ_LABEL, fontsize=11)
+        ax.set_title(f"{case.label}\n{detail}", fontsize=11)
+    _dz_colourbar(fig.colorbar(mappable(), ax=axes, shrink=0.8, pad=0.015))
     fig.suptitle(plain_text(title), fontsize=13, fontweight="bold")
     figure_legend(fig, maps, overlay, _REGIONS_LABEL, _BANDS_LABEL, ncols=4)
     return fig

@@ -64,7 +64,7 @@ def conditioning_plots(
     limited = None if spec.workspace.full_turn else spec.workspace.torsion_deg
     fig_map = plots.inverse_condition_map_figure(
         maps.azimuth_deg, maps.tilt_deg, maps.values, maps.torsions_deg,
-        title=f"1/κ over the pointing cone, {name}", subtitle=_workspace_text(spec),
+        title=rf"$1/\kappa$ over the pointing cone, {name}", subtitle=_workspace_text(spec),
         samples_deg=np.degrees(samples),
     )  # fmt: skip
     artifacts = figure_artifacts(fig_map, "inverse_condition_map",
@@ -73,7 +73,7 @@ def conditioning_plots(
     fig_sweep = plots.torsion_sweep_figure(
         sweeps.psi3_deg, sweeps.azimuth_tilt_deg,
         [plots.SweepSeries(f"{name}, branch {spec.branch:+d}", sweeps.values)],
-        title=f"1/κ over a full torsion turn, {name}",
+        title=rf"$1/\kappa$ over a full torsion turn, {name}",
         tilt_max_deg=spec.workspace.tilt_max_deg, torsion_range_deg=limited,
     )  # fmt: skip
     return (*artifacts, *figure_artifacts(fig_sweep, "torsion_sweeps",

@@ -189,12 +189,14 @@ def _plots(
     ws = spec.workspace
     lo, hi = ws.torsion_deg
     torsion = "full torsion turn" if ws.full_turn else f"torsion [{lo:.10g}, {hi:.10g}]°"
-    gamma = "gamma = beta" if spec.identical_platforms else f"gamma = {spec.gamma_for(0.0):g}°"
+    gamma = (
+        r"$\gamma = \beta$" if spec.identical_platforms else rf"$\gamma$ = {spec.gamma_for(0.0):g}°"
+    )
     subtitle = f"cone of {2 * ws.tilt_max_deg:.10g}° opening, {torsion}, {gamma}"
     spaces = [plots.SubDesignSpace(r["beta_deg"], r["gamma_deg"], r["D1_deg"], r["D2_deg"])
               for r in rows]  # fmt: skip
     fig = plots.design_space_figure(spaces, title="Design space: feasible link angles per "
-                                    "beta (eqs 16-19)", subtitle=subtitle)  # fmt: skip
+                                    r"$\beta$ (eqs 16-19)", subtitle=subtitle)  # fmt: skip
     artifacts = figure_artifacts(fig, "design_space", "Sub-design spaces in the a1-a2 plane")
     if dist is None or dist.degenerate:
         return artifacts
@@ -202,7 +204,7 @@ def _plots(
                for a1, a2 in best_designs(dist)]  # fmt: skip
     fig = plots.index_distribution_figure(
         dist.alpha1_deg, dist.alpha2_deg, dist.values,
-        title=f"Conditioning index over the design space, beta = {dist.beta_deg:g}°",
+        title=rf"Conditioning index over the design space, $\beta$ = {dist.beta_deg:g}°",
         subtitle=f"{subtitle}; branch {dist.branch:+d}", markers=markers,
     )  # fmt: skip
     return (*artifacts, *figure_artifacts(fig, "index_map",

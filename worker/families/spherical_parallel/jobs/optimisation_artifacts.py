@@ -116,7 +116,7 @@ def _index_map(spec: OptimisationSpec, shown: Presented, dist: IndexDistribution
     fig = design_plots.index_distribution_figure(
         dist.alpha1_deg, dist.alpha2_deg, dist.values,
         title=f"Conditioning index around the optimum {_label(shown.design)}°",
-        subtitle=f"beta = {dist.beta_deg:.4g}°, gamma = {dist.gamma_deg:.4g}°, branch "
+        subtitle=rf"$\beta$ = {dist.beta_deg:.4g}°, $\gamma$ = {dist.gamma_deg:.4g}°, branch "
         f"{spec.branch:+d}, {len(spec.free)} free parameter(s)",
         markers=markers,
     )  # fmt: skip
@@ -156,7 +156,7 @@ def _sweeps(spec: OptimisationSpec, design: sp.SpmDesign, paper: dict[str, Any] 
         series.append(workspace_plots.SweepSeries(f"{row['label']} {_label(other)}", values))
     fig = workspace_plots.torsion_sweep_figure(
         sweep.psi3_deg, sweep.azimuth_tilt_deg, series,
-        title="1/κ over a full torsion turn", tilt_max_deg=tilt,
+        title=r"$1/\kappa$ over a full torsion turn", tilt_max_deg=tilt,
         torsion_range_deg=None if spec.workspace.full_turn else spec.workspace.torsion_deg,
     )  # fmt: skip
     return figure_artifacts(fig, "torsion_sweeps", "1/kappa of the optimum along torsion turns")

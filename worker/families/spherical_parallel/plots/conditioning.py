@@ -13,7 +13,8 @@ The design-space figures (Figs 5-6, optimisation starts) are in
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+import math
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
@@ -26,8 +27,12 @@ from matplotlib.lines import Line2D
 from matplotlib.patches import Patch
 from numpy.typing import ArrayLike, NDArray
 
-from worker.common.figures import bad_figure_argument, plain_text
-from worker.families.spherical_parallel.plots.cone_panel import disk_image, disk_panel
+from worker.common.figures import bad_figure_argument, contour_labels, dimensionless, plain_text
+from worker.families.spherical_parallel.plots.cone_panel import (
+    RING_LABEL_ANGLE_DEG,
+    disk_image,
+    disk_panel,
+)
 
 if TYPE_CHECKING:
     from matplotlib.artist import Artist
@@ -71,6 +76,20 @@ def _vector(value: ArrayLike, name: str, where: str, minimum: int) -> FloatArray
     return arr
 
 
+def _readable_at(radius: float) -> Callable[[float, float], bool]:
+    """Where a contour label reads well: off the tilt rings' own labels (along the
+    100° spoke, :func:`disk_panel`) and away from the rim, where the contours crowd."""
+    spoke = np.radians(RING_LABEL_ANGLE_DEG)
+
+    def readable(x: float, y: float) -> bool:
+        along = x * np.cos(spoke) + y * np.sin(spoke)
+        across = abs(-x * np.sin(spoke) + y * np.cos(spoke))
+        on_ring_labels = along > 0.0 and across < 0.18 * radius
+        return not on_ring_labels and math.hypot(x, y) <= 0.88 * radius
+
+    return readable
+
+
 def inverse_condition_map_figure(
     azimuth_deg: ArrayLike,
     tilt_deg: ArrayLike,
@@ -104,7 +123,13 @@ def inverse_condition_map_figure(
     rows = -(-torsions.size // cols)
     fig = Figure(figsize=(4.3 * cols + 1.4, 4.5 * rows + 1.3), layout="constrained")
     scale = inverse_condition_scale()
-    norm, cmap = Normalize(0.0, 1.0), scale.get_cmap()
+    # The scale ends at the data's peak (rounded up to 0.1), not at 1: more contrast.
+    peak = float(np.nanmax(grid)) if np.isfinite(grid).any() else 1.0
+    norm, cmap = (
+        Normalize(0.0, min(1.0, max(0.1, math.ceil(10.0 * peak - 1e-9) / 10.0))),
+        scale.get_cmap(),
+    )
+    scale.set_norm(norm)
     radius = float(tilt[-1])
     axes = []
     for index, (torsion, panel) in enumerate(zip(torsions, grid, strict=True)):
@@ -119,7 +144,8 @@ def inverse_condition_map_figure(
             lines = ax.contour(axis, axis, np.ma.masked_invalid(image), levels=levels,
                                colors="white", linewidths=0.8, zorder=3)  # fmt: skip
             labelled = [v for v in levels if round(10 * v) % 2 == 0]  # every 0.2: less clutter
-            ax.clabel(lines, labelled, fmt="%.1f", fontsize=7.5, inline_spacing=2)
+            contour_labels(ax, lines, levels=labelled, fmt="%.1f", fontsize=7.5,
+                           inline_spacing=2, keep=_readable_at(radius))  # fmt: skip
         here = marks[_same_angle(marks[:, 2], torsion)]
         if here.size:
             angle = np.radians(here[:, 0])
@@ -128,7 +154,8 @@ def inverse_condition_map_figure(
         ax.set_title(rf"torsion $\psi_3$ = {torsion:g}°", fontsize=11)
     bar = fig.colorbar(scale, ax=axes, shrink=0.85, pad=0.03)
     bar.set_label(INVERSE_CONDITION_LABEL, fontsize=10.5)
-    heading = plain_text(title) + (f"\n{plain_text(subtitle)}" if subtitle else "")
+    dimensionless(bar.ax.yaxis)
+    heading = title + (f"\n{subtitle}" if subtitle else "")
     fig.suptitle(heading, fontsize=12.5, fontweight="bold")
     handles: list[Artist] = [
         Line2D([], [], color="0.45", lw=0.8, label=r"contours of $1/\kappa$ every 0.1"),
@@ -204,12 +231,13 @@ def torsion_sweep_figure(
                      fontsize=10, loc="left")  # fmt: skip
         ax.set_ylim(bottom, 1.0)
         ax.set_ylabel(r"$1/\kappa$", fontsize=11)
+        dimensionless(ax.yaxis)
         ax.grid(alpha=0.3)
         ax.tick_params(labelsize=9)
     axes[-1].set_xlim(float(psi3[0]), float(psi3[-1]))
     axes[-1].set_xticks(np.arange(float(psi3[0]), float(psi3[-1]) + 1e-9, 60.0))
     axes[-1].set_xlabel(r"torsion $\psi_3$ [°]", fontsize=11)
-    fig.suptitle(plain_text(title), fontsize=12.5, fontweight="bold")
+    fig.suptitle(title, fontsize=12.5, fontweight="bold")
     handles: list[Artist] = [
         Line2D([], [], color=_SERIES_COLORS[k], ls=_SERIES_STYLES[k], lw=1.8,
                label=plain_text(item.label))

@@ -19,7 +19,15 @@ from numpy.typing import NDArray
 if TYPE_CHECKING:
     from matplotlib.axes import Axes
 
-__all__ = ["DISK_PIXELS", "disk_image", "disk_panel"]
+#: The spoke (deg) along which the tilt rings are labelled.
+RING_LABEL_ANGLE_DEG = 100.0
+
+__all__ = [
+    "DISK_PIXELS",
+    "RING_LABEL_ANGLE_DEG",
+    "disk_image",
+    "disk_panel",
+]
 
 FloatArray = NDArray[np.float64]
 #: Pixels across the resampled disk.
@@ -66,9 +74,9 @@ def disk_panel(
         if 0.0 < tick < radius * 0.999:
             ax.plot(tick * np.cos(turn), tick * np.sin(turn), color="white", lw=0.5, alpha=0.5,
                     zorder=2)  # fmt: skip
-            ax.text(tick * np.cos(np.radians(100.0)), tick * np.sin(np.radians(100.0)),
-                    f"{tick:g}°", fontsize=7.5, color="white", ha="center", va="bottom",
-                    zorder=4)  # fmt: skip
+            ring = np.radians(RING_LABEL_ANGLE_DEG)
+            ax.text(tick * np.cos(ring), tick * np.sin(ring), f"{tick:g}°", fontsize=7.5,
+                    color="white", ha="center", va="bottom", zorder=4)  # fmt: skip
     for spoke in np.radians(_SPOKES_DEG):
         ax.plot([0.0, radius * np.cos(spoke)], [0.0, radius * np.sin(spoke)], color="white",
                 lw=0.5, alpha=0.5, zorder=2)  # fmt: skip

@@ -20,7 +20,7 @@ from matplotlib.lines import Line2D
 from matplotlib.patches import Patch, Polygon
 from numpy.typing import ArrayLike
 
-from worker.common.figures import bad_figure_argument, plain_text
+from worker.common.figures import bad_figure_argument, contour_labels, dimensionless, plain_text
 from worker.families.spherical_parallel.plots.conditioning import NO_SOLUTION_COLOR, FloatArray
 
 if TYPE_CHECKING:
@@ -193,8 +193,8 @@ def design_space_figure(
     ax.set_xlabel(r"base-side link angle $\alpha_1$ [°]", fontsize=11)
     ax.set_ylabel(r"platform-side link angle $\alpha_2$ [°]", fontsize=11)
     ax.grid(alpha=0.25)
-    ax.set_title(plain_text(subtitle), fontsize=10, color="0.25")
-    fig.suptitle(plain_text(title), fontsize=12.5, fontweight="bold")
+    ax.set_title(subtitle, fontsize=10, color="0.25")
+    fig.suptitle(title, fontsize=12.5, fontweight="bold")
     handles.append(
         Line2D(
             [],
@@ -249,7 +249,7 @@ def index_distribution_figure(
                   zorder=2)  # fmt: skip
     if finite.size and varies:
         lines = ax.contour(a1, a2, masked, levels=8, colors="white", linewidths=0.8, zorder=3)
-        ax.clabel(lines, fmt="%.3f", fontsize=8)
+        contour_labels(ax, lines, fmt="%.3f", fontsize=8)
     outline = np.concatenate([a1[0, :], a1[:, -1], a1[-1, ::-1], a1[::-1, 0]])
     outline2 = np.concatenate([a2[0, :], a2[:, -1], a2[-1, ::-1], a2[::-1, 0]])
     ax.plot(outline, outline2, color="black", lw=1.2, zorder=4)
@@ -261,9 +261,11 @@ def index_distribution_figure(
     ax.set_xlabel(r"base-side link angle $\alpha_1$ [°]", fontsize=11)
     ax.set_ylabel(r"platform-side link angle $\alpha_2$ [°]", fontsize=11)
     ax.grid(alpha=0.25)
-    ax.set_title(plain_text(subtitle), fontsize=10, color="0.25")
-    fig.colorbar(ScalarMappable(norm, cmap), ax=ax, shrink=0.8).set_label(value_label, fontsize=10)
-    fig.suptitle(plain_text(title), fontsize=12.5, fontweight="bold")
+    ax.set_title(subtitle, fontsize=10, color="0.25")
+    bar = fig.colorbar(ScalarMappable(norm, cmap), ax=ax, shrink=0.8)
+    bar.set_label(value_label, fontsize=10)
+    dimensionless(bar.ax.yaxis)
+    fig.suptitle(title, fontsize=12.5, fontweight="bold")
     handles.append(Line2D([], [], color="black", lw=1.2, label="edge of the design space (eq 19)"))
     if np.isnan(grid).any():
         handles.append(Patch(color=NO_SOLUTION_COLOR, label="misses part of the workspace"))

@@ -13,7 +13,7 @@ import numpy as np
 from matplotlib.figure import Figure
 from matplotlib.patches import Patch
 
-from worker.common.figures import bad_figure_argument, plain_text
+from worker.common.figures import bad_figure_argument, categorical, dimensionless, plain_text
 
 if TYPE_CHECKING:
     from matplotlib.artist import Artist
@@ -66,8 +66,10 @@ def optimisation_starts_figure(
     ax.set_xticks(x, [str(k) for k in x], fontsize=9)
     ax.set_xlabel("start", fontsize=11)
     ax.set_ylabel(r"mean$(1/\kappa^2)$ at the end of the start (eq 28)", fontsize=10.5)
+    categorical(ax.xaxis)
+    dimensionless(ax.yaxis)
     ax.grid(axis="y", alpha=0.3, zorder=0)
-    fig.suptitle(plain_text(title), fontsize=12.5, fontweight="bold")
+    fig.suptitle(title, fontsize=12.5, fontweight="bold")
     handles: list[Artist] = [
         Patch(fc="#1f5fa8", ec="black", lw=0.6, label="converged"),
         Patch(fc="#e9a23b", ec="black", lw=0.6, label="stopped by the evaluation budget"),

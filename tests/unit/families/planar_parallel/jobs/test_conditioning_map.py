@@ -199,7 +199,7 @@ def test_rendered_figures(rendered: tuple[JobOutcome, RecordingContext]) -> None
     assert all(a.data for a in outcome.artifacts)
     for stem, label in (("inverse_condition_map", r"conditioning index $1/\kappa$ (eq 7)"),
                         ("pressure_angle_map",
-                         r"minimum pressure angle $\beta_{\min}$ [°] (eq 15)")):  # fmt: skip
+                         r"minimum pressure angle $\beta_{\min}$ (eq 15) [°]")):  # fmt: skip
         png_pixels(artifact(outcome, f"{stem}.png"))
         strings = svg_strings(artifact(outcome, f"{stem}.svg"))
         assert {"x [units]", "y [units]", label} <= set(strings)

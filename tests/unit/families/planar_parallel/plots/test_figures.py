@@ -23,7 +23,7 @@ from worker.families.planar_parallel.plots.panels import INVERSE_CONDITION, MAX_
 POINTS = np.array([[0.0, -1.5], [1.0, -1.0]])
 JOINTS = [[0.5, 0.0], [-0.5, 0.0]]
 IC_LABEL = r"conditioning index $1/\kappa$ (eq 7)"
-BETA_LABEL = r"minimum pressure angle $\beta_{\min}$ [°] (eq 15)"
+BETA_LABEL = r"minimum pressure angle $\beta_{\min}$ (eq 15) [°]"
 OUTLINE_LABEL = r"boundary of $W_{\kappa 0}$: $1/\kappa = 0.5$"
 
 
@@ -276,7 +276,7 @@ def test_normalised_rectangle_figure() -> None:
     assert any(s.startswith("Fig 9 test") for s in strings)
     top, bottom = fig.axes[0], fig.axes[1]
     assert top.get_title().startswith(r"conditioning index $1/\kappa$: minimum 0.65")
-    assert bottom.get_title().startswith(r"minimum pressure angle $\beta_{\min}$ [°]: minimum 30")
+    assert bottom.get_title().startswith(r"minimum pressure angle $\beta_{\min}$: minimum 30°")
     # the minima sit on the top edge, mirrored about x = 0
     markers = [line for line in top.lines if line.get_marker() == "v"]
     assert sorted(float(m.get_xdata()[0]) for m in markers) == pytest.approx([-0.5, 0.5])
