@@ -239,8 +239,15 @@ def _graph_legend(
         Line2D([], [], ls="none", marker="$9$", ms=8, color=_PERIPHERAL_COLOUR,
                label=f"side length used by a loop [{plain_text(length_unit)}]"),
     ]  # fmt: skip
-    fig.legend(handles=handles, loc="outside lower center", ncols=min(len(handles), 3 * columns),
-               fontsize=9, frameon=False, columnspacing=1.4)  # fmt: skip
+    if sizes:  # a polygonal link has one length per side; each loop uses one side
+        handles.append(
+            Line2D([], [], ls="none", marker="$a$", ms=8, color=_PERIPHERAL_COLOUR,
+                   label="next to a polygonal link: the length of the side (a, b, ...) "
+                   "the loop passes")
+        )  # fmt: skip
+    ncols = min(len(handles), 3 * columns if not sizes else max(1, 2 * columns - 1))
+    fig.legend(handles=handles, loc="outside lower center", ncols=ncols, fontsize=9,
+               frameon=False, columnspacing=1.4)  # fmt: skip
 
 
 def _draw_graph(ax: Axes, graph: ChainGraph) -> None:

@@ -239,6 +239,8 @@ def _plots(
             else None
         ),
         "subtitle": describe_architecture(spec, arch),
+        # A linear drive's 1/kappa does not depend on x: isotropic along a whole line.
+        "isotropic_line": spec.actuation == "linear-drive",
         "length_unit": spec.length_unit,
     }
     progress.report(48.0, "plot of 1/kappa")

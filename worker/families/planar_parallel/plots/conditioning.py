@@ -59,6 +59,7 @@ def inverse_condition_map_figure(
     subtitle: str = "",
     length_unit: str = "units",
     constant_reason: str | None = None,
+    isotropic_line: bool = False,
 ) -> Figure:
     """Contours of 1/kappa over the workspace with W_kappa0 outlined (the paper's Fig. 4).
 
@@ -71,7 +72,7 @@ def inverse_condition_map_figure(
         inverse_condition=inverse_condition, limit=inverse_condition_limit, points=points,
         point_labels=point_labels, joints=joints, isotropic_point=isotropic_point,
         title=title, subtitle=subtitle, length_unit=length_unit,
-        constant_reason=constant_reason,
+        constant_reason=constant_reason, isotropic_line=isotropic_line,
     )  # fmt: skip
 
 
@@ -90,6 +91,7 @@ def pressure_angle_map_figure(
     subtitle: str = "",
     length_unit: str = "units",
     constant_reason: str | None = None,
+    isotropic_line: bool = False,
 ) -> Figure:
     """Contours of beta_min = min(beta_1, beta_2) in degrees (the paper's Fig. 5).
 
@@ -102,7 +104,7 @@ def pressure_angle_map_figure(
         inverse_condition=inverse_condition, limit=inverse_condition_limit, points=points,
         point_labels=point_labels, joints=joints, isotropic_point=isotropic_point,
         title=title, subtitle=subtitle, length_unit=length_unit,
-        constant_reason=constant_reason,
+        constant_reason=constant_reason, isotropic_line=isotropic_line,
     )  # fmt: skip
 
 
@@ -123,6 +125,7 @@ def _map_figure(
     subtitle: str,
     length_unit: str,
     constant_reason: str | None,
+    isotropic_line: bool,
 ) -> Figure:
     grid = checked_grid(x, y, values, where)
     outline = None
@@ -134,6 +137,7 @@ def _map_figure(
     overlay = checked_overlay(
         where, outline=outline, outline_label=outline_label, points=points,
         labels=point_labels, joints=joints, isotropic_point=isotropic_point,
+        isotropic_line=isotropic_line,
     )  # fmt: skip
     fig = Figure(figsize=map_figure_size(grid, axes_width=6.0), layout="compressed")
     ax = fig.add_subplot()

@@ -53,6 +53,12 @@ _OUTLINE = "#e8373f"
 _RECTANGLE = "#1f5fbf"
 _HALO = [withStroke(linewidth=4.0, foreground="white")]
 _JOINT: dict[str, Any] = {"marker": "s", "ms": 7, "color": "black", "mec": "white", "mew": 1.2}
+_ISOTROPIC_LINE: dict[str, Any] = {
+    "color": "white",
+    "lw": 2.0,
+    "ls": (0, (6, 3)),
+    "path_effects": [withStroke(linewidth=3.6, foreground="black")],
+}
 _ISOTROPIC: dict[str, Any] = {"marker": "*", "ms": 13, "color": "white", "mec": "black",
                               "mew": 1.0}  # fmt: skip
 _POINT: dict[str, Any] = {"marker": "o", "ms": 7, "mfc": "white", "mec": "black", "mew": 1.3}
@@ -145,6 +151,9 @@ class MapOverlay:
     isotropic_point: tuple[float, float] | None = None
     rectangle: tuple[float, float, float, float] | None = None
     rectangle_label: str = ""
+    #: Isotropy holds along the whole line y = isotropic_point[1] (the linear drive,
+    #: whose 1/kappa does not depend on x): drawn as a line, not a star.
+    isotropic_line: bool = False
 
 
 def checked_grid(x: ArrayLike, y: ArrayLike, values: ArrayLike, where: str) -> ScalarGrid:
@@ -184,6 +193,7 @@ def checked_overlay(
     isotropic_point: Sequence[float] | None = None,
     rectangle: Sequence[float] | None = None,
     rectangle_label: str = "",
+    isotropic_line: bool = False,
 ) -> MapOverlay:
     """The overlay's pieces checked: points (k, 2) with k labels (default 1, 2, ...);
     ``outline`` = (1/kappa grid, limit), nothing drawn when the limit is None."""
@@ -235,6 +245,7 @@ def checked_overlay(
         isotropic_point=iso,
         rectangle=rect,
         rectangle_label=rectangle_label,
+        isotropic_line=isotropic_line,
     )
 
 
@@ -286,7 +297,9 @@ def contour_panel(
                                     path_effects=_HALO, zorder=4))  # fmt: skip
     if overlay.joints is not None:
         ax.plot(overlay.joints[:, 0], overlay.joints[:, 1], ls="none", zorder=6, **_JOINT)
-    if overlay.isotropic_point is not None:
+    if overlay.isotropic_point is not None and overlay.isotropic_line:
+        ax.axhline(overlay.isotropic_point[1], zorder=6, **_ISOTROPIC_LINE)
+    elif overlay.isotropic_point is not None:
         ax.plot(*overlay.isotropic_point, ls="none", zorder=6, **_ISOTROPIC)
     x0, x1, y0, y1 = view if view is not None else _extent(grid)
     if overlay.points is not None:
@@ -343,7 +356,10 @@ def overlay_legend(fig: Figure, overlay: MapOverlay, *, unreachable: bool, ncols
         handles.append(Line2D([], [], color=_RECTANGLE, lw=2.2, label=overlay.rectangle_label))
     if overlay.joints is not None:
         handles.append(Line2D([], [], ls="none", label="actuated joints (±e, 0)", **_JOINT))
-    if overlay.isotropic_point is not None:
+    if overlay.isotropic_point is not None and overlay.isotropic_line:
+        handles.append(Line2D([], [], label=r"isotropic line ($1/\kappa = 1$ at every $x$)",
+                              **_ISOTROPIC_LINE))  # fmt: skip
+    elif overlay.isotropic_point is not None:
         handles.append(Line2D([], [], ls="none", label=r"isotropic point ($1/\kappa = 1$)",
                               **_ISOTROPIC))  # fmt: skip
     if overlay.points is not None:

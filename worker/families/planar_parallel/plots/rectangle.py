@@ -73,6 +73,12 @@ def normalised_rectangle_figure(
             lines = ax.contour(grid.x, grid.y, grid.values, levels=[level], colors=_CHOSEN,
                                linewidths=2.0, zorder=3)  # fmt: skip
             contour_labels(ax, lines, fmt={level: label}, fontsize=9, inline=True)
+        # The minima sit on the rectangle's edge: a margin keeps their markers whole
+        # inside the frame; the margin is outside the rectangle, so it is left plain.
+        ax.patch.set_hatch(None)
+        pad_x, pad_y = 0.04 * np.ptp(grid.x), 0.04 * np.ptp(grid.y)
+        ax.set_xlim(grid.x[0] - pad_x, grid.x[-1] + pad_x)
+        ax.set_ylim(grid.y[0] - pad_y, grid.y[-1] + pad_y)
         for kx, ky in _minima(grid):
             ax.plot(grid.x[kx], grid.y[ky], "v", ms=10, color=_CHOSEN, mec="white",
                     clip_on=False, zorder=6)  # fmt: skip
@@ -85,8 +91,9 @@ def normalised_rectangle_figure(
             ax.set_aspect("auto")
         colour_bar(ax, scale, f"{name} [{unit}]" if unit else name,
                    max(1, (len(scale.levels) - 1) // 6))  # fmt: skip
-    fig.suptitle(title + (f"\n{subtitle}" if subtitle else ""), fontsize=12.5,
-                 fontweight="bold")  # fmt: skip
+    fig.suptitle(title, fontsize=12.5, fontweight="bold")
+    if subtitle:  # the design's numbers, small, under the panels (not a block of bold)
+        fig.supxlabel(subtitle, fontsize=9.5, color="0.3")
     return fig
 
 

@@ -83,7 +83,7 @@ def optimisation_artifacts(
             dist = index_distribution(ws, samples, beta, gamma, INDEX_MAP_POINTS, spec.branch)
             artifacts += _index_map(spec, shown, dist, paper)
         progress.report(88.0, "plot: starts")
-        artifacts += _starts(outcome, paper)
+        artifacts += _starts(outcome, paper, shown)
         if shown is not None:
             progress.report(92.0, "plot: torsion sweeps")
             artifacts += _sweeps(spec, shown.design, paper)
@@ -123,8 +123,8 @@ def _index_map(spec: OptimisationSpec, shown: Presented, dist: IndexDistribution
     return figure_artifacts(fig, "index_map", "mean(1/kappa^2) over the optimum's design space")
 
 
-def _starts(outcome: sp.OptimisationResult, paper: dict[str, Any] | None
-            ) -> tuple[Artifact, ...]:  # fmt: skip
+def _starts(outcome: sp.OptimisationResult, paper: dict[str, Any] | None,
+            shown: Presented | None) -> tuple[Artifact, ...]:  # fmt: skip
     bars = [start_plots.StartBar(s.mean_square_inverse_condition, s.converged,
                                   _label(s.design) if s.design is not None else "")
             for s in outcome.starts]  # fmt: skip
@@ -138,6 +138,7 @@ def _starts(outcome: sp.OptimisationResult, paper: dict[str, Any] | None
         bars, best_index=outcome.best_start,
         title=f"Optimisation starts: {outcome.evaluations:,} evaluations",
         references=references,
+        reported=_label(shown.design) if shown is not None else "",
     )  # fmt: skip
     return figure_artifacts(fig, "starts", "Final mean(1/kappa^2) of every start")
 
@@ -149,11 +150,17 @@ def _sweeps(spec: OptimisationSpec, design: sp.SpmDesign, paper: dict[str, Any] 
     lo, hi = spec.workspace.torsion_deg
     start = sweep_start(lo, hi, spec.workspace.full_turn)
     sweep = torsion_sweeps(design, spec.branch, pairs, start)
-    series = [workspace_plots.SweepSeries(f"optimum {_label(design)}", sweep.values)]
+    optimum_label = f"optimum {_label(design)}"
+    series: list[workspace_plots.SweepSeries] = []
     for row in _paper_rows(paper)[:3]:
         other = design_of(row["alpha1_deg"], row["alpha2_deg"], row["beta_deg"], row["gamma_deg"])
         values = torsion_sweeps(other, spec.branch, pairs, start).values
+        if np.allclose(values, sweep.values, rtol=0.0, atol=1e-4, equal_nan=True):
+            # The same curves (the same design, or a twin): one line, both named.
+            optimum_label += f", the same as {row['label']} {_label(other)}"
+            continue
         series.append(workspace_plots.SweepSeries(f"{row['label']} {_label(other)}", values))
+    series.insert(0, workspace_plots.SweepSeries(optimum_label, sweep.values))
     fig = workspace_plots.torsion_sweep_figure(
         sweep.psi3_deg, sweep.azimuth_tilt_deg, series,
         title=r"$1/\kappa$ over a full torsion turn", tilt_max_deg=tilt,

@@ -41,7 +41,7 @@ _LEGEND_LIMIT = 10  # more sub-design spaces than this: a colour bar over beta i
 FLAT_RANGE = 1e-6
 _MARKER_STYLES = {
     "optimum": {"marker": "o", "ms": 9, "mfc": "white", "mec": "black", "mew": 1.6},
-    "twin": {"marker": "o", "ms": 8, "mfc": "none", "mec": "black", "mew": 1.4, "ls": "none"},
+    "twin": {"marker": "D", "ms": 7, "mfc": "none", "mec": "#d1495b", "mew": 1.4, "ls": "none"},
     "paper": {"marker": "D", "ms": 7, "mfc": "#d1495b", "mec": "white", "mew": 1.0},
     "grid best": {"marker": "o", "ms": 8, "mfc": "white", "mec": "black", "mew": 1.3},
 }

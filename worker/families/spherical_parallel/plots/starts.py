@@ -31,15 +31,27 @@ class StartBar:
     label: str
 
 
+def _best_label(starts: Sequence[StartBar], best: int | None, reported: str) -> str:
+    """The legend entry of the best start, naming the reported design when it is a twin."""
+    if best is None or not reported or plain_text(reported) == plain_text(starts[best].label):
+        return "optimum"
+    return (
+        f"optimum: start {best} ends at {plain_text(starts[best].label)}, reported as its "
+        f"twin {plain_text(reported)} (the same score)"
+    )
+
+
 def optimisation_starts_figure(
     starts: Sequence[StartBar],
     *,
     best_index: int | None,
     title: str,
     references: Sequence[tuple[str, float]] = (),
+    reported: str = "",
 ) -> Figure:
     """The final mean(1/kappa^2) of every start, the best one highlighted; horizontal lines
-    for reference values (e.g. the paper's printed value)."""
+    for reference values (e.g. the paper's printed value).  ``reported``: the design the
+    result reports, when it is not the best start's own (a twin scoring the same)."""
     where = "optimisation_starts_figure"
     if not starts:
         raise bad_figure_argument("starts", where, "at least one StartBar", "none")
@@ -70,11 +82,18 @@ def optimisation_starts_figure(
     dimensionless(ax.yaxis)
     ax.grid(axis="y", alpha=0.3, zorder=0)
     fig.suptitle(title, fontsize=12.5, fontweight="bold")
+    best = _best_label(starts, best_index, reported)
     handles: list[Artist] = [
         Patch(fc="#1f5fa8", ec="black", lw=0.6, label="converged"),
         Patch(fc="#e9a23b", ec="black", lw=0.6, label="stopped by the evaluation budget"),
-        Patch(fc="white", ec="#d1495b", lw=2.4, label="optimum"),
+        Patch(fc="white", ec="#d1495b", lw=2.4, label=best),
     ]
     handles += ax.get_legend_handles_labels()[0]
-    fig.legend(handles=handles, loc="outside lower center", ncols=2, fontsize=9, frameon=False)
+    fig.legend(
+        handles=handles,
+        loc="outside lower center",
+        ncols=1 if len(best) > 40 else 2,  # a long entry gets a line of its own
+        fontsize=9,
+        frameon=False,
+    )
     return fig

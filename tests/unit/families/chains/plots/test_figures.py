@@ -72,10 +72,11 @@ def legend_texts(fig: Figure) -> list[str]:
 
 def test_chain_graphs_legend_names_the_vertex_kinds_drawn() -> None:
     fig = graph_plots.chain_graphs_figure([FIG_4B], title="Graphs", length_unit="cm")
+    side = "next to a polygonal link: the length of the side (a, b, ...) the loop passes"
     assert legend_texts(fig) == ["binary link", "ternary link", "joint", "loop (numbered)",
-                                 "side length used by a loop [cm]"]  # fmt: skip
+                                 "side length used by a loop [cm]", side]  # fmt: skip
     single = graph_plots.chain_graphs_figure([quad("Fig 2e", (18, 10, 17, 15))], title="One")
-    assert "ternary link" not in legend_texts(single)
+    assert "ternary link" not in legend_texts(single) and side not in legend_texts(single)
 
 
 def test_many_chains_wrap_into_rows() -> None:
