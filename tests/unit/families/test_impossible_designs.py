@@ -41,7 +41,7 @@ def test_planar2dof_chains_that_never_meet_are_refused() -> None:
     validate_inputs(PLANAR2DOF_MAP, {"actuation": "telescopic-leg", "e": 5})
 
 
-@settings(max_examples=30, deadline=None)
+@settings(max_examples=30, deadline=None, derandomize=True)
 @given(st.floats(0.2, 3.0), st.floats(0.2, 3.0), st.floats(0.0, 8.0))
 def test_the_planar2dof_refusal_is_exactly_an_empty_reachable_set(
     l1: float, l2: float, e: float
@@ -107,7 +107,7 @@ def test_an_spm_design_that_reaches_nothing_is_refused() -> None:
     validate_inputs(SPM_MAP, spm_inputs(60, 90, 90))
 
 
-@settings(max_examples=25, deadline=None)
+@settings(max_examples=25, deadline=None, derandomize=True)
 @given(st.floats(2.0, 178.0), st.floats(2.0, 178.0), st.floats(2.0, 178.0))
 def test_the_spm_refusal_agrees_with_a_denser_search(a1: float, a2: float, beta: float) -> None:
     try:
@@ -117,7 +117,7 @@ def test_the_spm_refusal_agrees_with_a_denser_search(a1: float, a2: float, beta:
         accepted = False
     design = sp.SpmDesign.from_degrees(a1, a2, beta, 0.0)
     ws = sp.Workspace(np.radians(45.0), (-np.pi, np.pi), True)
-    dense = sp.boundary_grid(ws, azimuth=48, tilt=31, torsion=144)
+    dense = sp.boundary_grid(ws, azimuth=60, tilt=41, torsion=180)  # denser than the check
     reaches = bool(sp.inverse_kinematics(design, dense)[1].any())
     if not accepted:  # refused: a denser search finds nothing either
         assert not reaches
