@@ -32,9 +32,11 @@ __all__ = [
     "DIMENSIONLESS",
     "NPZ_DESCRIPTION_ENTRIES",
     "NPZ_MEDIA_TYPE",
+    "angle_or_pure",
     "column",
     "columns_csv",
     "job_metadata",
+    "named_column",
     "npz_artifact",
 ]
 
@@ -57,6 +59,18 @@ def column(quantity: str, unit: str) -> str:
         raise ValueError(f"The 'quantity' and 'unit' of column must make a name like "
                          f"'x [mm]'. Got {name!r} instead.")  # fmt: skip
     return name
+
+
+def angle_or_pure(name: str) -> str:
+    """The unit of an array named by dexlab's convention: ``*_deg`` is in degrees, any
+    other name a pure number."""
+    return "deg" if name.endswith("_deg") else DIMENSIONLESS
+
+
+def named_column(name: str) -> str:
+    """The CSV column of an array so named: ``"alpha1_deg"`` -> ``"alpha1 [deg]"``,
+    ``"nfev"`` -> ``"nfev [-]"``."""
+    return column(name.removesuffix("_deg"), angle_or_pure(name))
 
 
 def job_metadata(process_id: str, inputs: Mapping[str, Any]) -> dict[str, Any]:

@@ -15,10 +15,10 @@ from typing import Any
 import numpy as np
 
 from worker.common.data_export import (
-    DIMENSIONLESS,
-    column,
+    angle_or_pure,
     columns_csv,
     job_metadata,
+    named_column,
     npz_artifact,
 )
 from worker.common.figures import figure_artifacts
@@ -216,11 +216,7 @@ def _data(
 ) -> tuple[Artifact, ...]:
     names = ("beta_deg", "gamma_deg", "f_min", "f_max", "D1_deg", "D2_deg", "degenerate", "empty")
     columns = {n: np.array([r[n] for r in rows]) for n in names}
-
-    def unit(name: str) -> str:
-        return "deg" if name.endswith("_deg") else DIMENSIONLESS
-
-    named = {column(n.removesuffix("_deg"), unit(n)): values for n, values in columns.items()}
+    named = {named_column(n): values for n, values in columns.items()}
     csv = columns_csv(CSV_NAME, named, "Design space per beta (CSV)")
     arrays = dict(columns)
     arrays["corners_deg"] = np.array([r["rectangle"]["corners_deg"] for r in rows])
@@ -240,7 +236,7 @@ def _data(
         NPZ_NAME,
         arrays,
         "Design space (NumPy arrays)",
-        units={n: unit(n) for n in arrays},
+        units={n: angle_or_pure(n) for n in arrays},
         axes=axes,
         metadata=job_metadata("spm-design-space", spec.model_dump(mode="json")),
     )

@@ -14,10 +14,10 @@ from typing import Any
 import numpy as np
 
 from worker.common.data_export import (
-    DIMENSIONLESS,
-    column,
+    angle_or_pure,
     columns_csv,
     job_metadata,
+    named_column,
     npz_artifact,
 )
 from worker.common.figures import figure_artifacts
@@ -45,15 +45,6 @@ _CSV_COLUMNS = ("start", "alpha1_start_deg", "alpha2_start_deg", "beta_start_deg
                 "gamma_start_deg", "alpha1_deg", "alpha2_deg", "beta_deg", "gamma_deg",
                 "converged", "status", "nfev", "evaluations", "feasible",
                 "mean_square_inverse_condition")  # fmt: skip
-
-
-def _unit(name: str) -> str:
-    return "deg" if name.endswith("_deg") else DIMENSIONLESS
-
-
-def _csv_name(name: str) -> str:
-    """'alpha1_start_deg' -> 'alpha1_start [deg]', 'nfev' -> 'nfev [-]'."""
-    return column(name.removesuffix("_deg"), _unit(name))
 
 
 def _angles(design: sp.SpmDesign | None) -> tuple[float, ...]:
@@ -194,7 +185,7 @@ def _data(
     columns = {name: np.asarray(values) for name, values in zip(_CSV_COLUMNS, table, strict=True)}
     for flag in ("converged", "feasible"):
         columns[flag] = columns[flag].astype(np.int8)
-    named = {_csv_name(name): values for name, values in columns.items()}
+    named = {named_column(name): values for name, values in columns.items()}
     csv = columns_csv(CSV_NAME, named, "Every optimisation start (CSV)")
     arrays: dict[str, Any] = dict(columns)
     arrays["samples_deg"] = np.degrees(samples)
@@ -227,7 +218,7 @@ def _data(
         NPZ_NAME,
         arrays,
         "Optimisation (NumPy arrays)",
-        units={n: _unit(n) for n in arrays},
+        units={n: angle_or_pure(n) for n in arrays},
         axes=axes,
         metadata=job_metadata("spm-optimisation", spec.model_dump(mode="json")),
     )
