@@ -42,7 +42,8 @@ def unrendered_artifacts(fig: Figure, stem: str, title: str) -> tuple[Artifact, 
 @pytest.fixture
 def fast_figures(monkeypatch: pytest.MonkeyPatch) -> None:
     """Skip PNG/SVG rendering in tests that check numbers, not plots."""
-    from worker.families.planar_serial.jobs import dexterity_map, synthesis
+    from worker.families.planar_serial.jobs import dexterity_map, optimum_artifacts, synthesis
 
     monkeypatch.setattr(dexterity_map, "figure_artifacts", unrendered_artifacts)
     monkeypatch.setattr(synthesis, "figure_artifacts", unrendered_artifacts)
+    monkeypatch.setattr(optimum_artifacts, "figure_artifacts", unrendered_artifacts)

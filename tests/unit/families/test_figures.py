@@ -33,6 +33,14 @@ VARIANTS: dict[str, list[dict[str, Any]]] = {
         {"links": [1, 1, 1], "joint_limits_deg": [[-90, 90], [-120, 120], [-170, 170]],
          "grid": {"points_per_axis": 41}, "orientation_step_deg": 5},
     ],
+    "planar3r-design": [
+        {"task_points": [[3, 4], [-8, 1]], "total_length_max": 20, "objective": "min_length",
+         "dz_target": 0.9, "max_generations": 10, "grid": {"points_per_axis": 41},
+         "trajectory": {"points": [[3, 4], [6, 0]], "samples": 10}, "length_unit": "mm"},
+        {"task_points": [[3, 4], [-8, 1]], "total_length_max": 20, "base_box": [-3, 3, -2, 2],
+         "joint_limits_deg": [[-90, 90], [-120, 120], [-170, 170]], "max_generations": 10,
+         "grid": {"points_per_axis": 41}},
+    ],
     "planar2dof-conditioning-map": [
         {"actuation": "linear-drive", "l2": 2.0, "grid": {"points_per_axis": 61},
          "inverse_condition_limit": 0.4},

@@ -30,6 +30,14 @@ SMALL: dict[str, dict[str, Any] | None] = {
         "grid": {"points_per_axis": 15},
         "orientation_step_deg": 10,
     },
+    "planar3r-design": {
+        "task_points": [[14.0, 14.0], [8.0, -8.0]],
+        "trajectory": {"points": [[14.0, 14.0], [8.0, -8.0]], "samples": 5},
+        "joint_limits_deg": [[-150, 150], [-150, 150], [-175, 175]],
+        "total_length_max": 37.0,
+        "max_generations": 3,
+        "grid": {"points_per_axis": 15},
+    },
     "planar2dof-conditioning-map": {
         "l2": 1.5,
         "architecture": "isotropic",

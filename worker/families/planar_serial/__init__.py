@@ -1,4 +1,4 @@
-"""Three-link planar serial arms (Patel & Sobh): two job kinds.
+"""Three-link planar serial arms (Patel & Sobh): three job kinds.
 
 The method, its conventions and the paper's errata: docs/methods/planar-serial.md.
 
@@ -6,6 +6,8 @@ The method, its conventions and the paper's errata: docs/methods/planar-serial.m
 paper's regions, the exact full-dexterity bands, task points and a trajectory.
 ``planar3r-synthesis``: link lengths from task points or a trajectory by eqs (10)-(11),
 checked in the paper's three cases.
+``planar3r-design``: link lengths (and the base) chosen for the task under its joint
+limits by a global search over the exact d_z, against the paper's rule.
 
 Importing this package builds the two process definitions and nothing else: the job
 modules (numpy maps, matplotlib figures) are imported when a job runs.
@@ -18,14 +20,20 @@ from worker.families.planar_serial.costs import (
     COST_LIMIT,
     SYNC_COST_LIMIT,
     TIME_LIMIT_S,
+    design_cost,
     dexterity_map_cost,
     synthesis_cost,
 )
-from worker.families.planar_serial.examples import DEXTERITY_MAP_EXAMPLES, SYNTHESIS_EXAMPLES
+from worker.families.planar_serial.design_spec import DesignSpec
+from worker.families.planar_serial.examples import (
+    DESIGN_EXAMPLES,
+    DEXTERITY_MAP_EXAMPLES,
+    SYNTHESIS_EXAMPLES,
+)
 from worker.families.planar_serial.specs import DexterityMapSpec, SynthesisSpec
 from worker.processes import ProcessDefinition, ProcessFile, data_files, figure_files
 
-__all__ = ["DEXTERITY_MAP", "PROCESSES", "SYNTHESIS"]
+__all__ = ["DESIGN", "DEXTERITY_MAP", "PROCESSES", "SYNTHESIS"]
 
 
 def _run_dexterity_map(spec: DexterityMapSpec, ctx: JobContext) -> JobOutcome:
@@ -38,6 +46,12 @@ def _run_synthesis(spec: SynthesisSpec, ctx: JobContext) -> JobOutcome:
     from worker.families.planar_serial.jobs.synthesis import run_synthesis
 
     return run_synthesis(spec, ctx)
+
+
+def _run_design(spec: DesignSpec, ctx: JobContext) -> JobOutcome:
+    from worker.families.planar_serial.jobs.optimal_links import run_design
+
+    return run_design(spec, ctx)
 
 
 _LIMITS_TEXT = (
@@ -59,13 +73,17 @@ DEXTERITY_MAP = ProcessDefinition(
         "Orientation dexterity d_z (0..1) and dexterity index D = d_z/3 (Patel & Sobh "
         "eqs 2-5) at every node of a grid, for links [l1, l2, l3] from the base. Fully "
         "revolute joints: the exact closed form (docs/methods/planar-serial.md). With "
-        "joint limits: orientations sampled every orientation_step_deg, inverse kinematics "
-        "over both elbow branches, task points refined by bisection. Reports the paper's four "
-        "regions next to the exact bands of full dexterity, reachable and fully dexterous "
-        "areas, d_z at task points and along a trajectory (eq 4 mean), CSV/NPZ data and "
-        "heat-map, 3-D surface and radial-section plots. "
+        "joint limits, method 'exact-events' (default): the feasible orientation arcs "
+        "between closed-form events (a joint at a limit, the wrist on the edge of the "
+        "two-link annulus), both elbow branches, exact to rounding; method "
+        "'orientation-sampling': orientations sampled every orientation_step_deg, task "
+        "points refined by bisection. Reports the paper's four regions next to the exact "
+        "bands of full dexterity, reachable and fully dexterous areas (of the joint-limited "
+        "arm under limits), d_z at task points and along a trajectory (eq 4 mean), CSV/NPZ "
+        "data and heat-map, 3-D surface and radial-section plots. "
         + _LIMITS_TEXT.format(
-            unit="grid points x orientation samples (1 per point without joint limits)"
+            unit="grid points x orientations tested per point (1 without joint limits, "
+            "at most 21 sub-arcs with exact events, the samples with orientation sampling)"
         )
     ),
     inputs_model=DexterityMapSpec,
@@ -75,15 +93,18 @@ DEXTERITY_MAP = ProcessDefinition(
         "links": "The links [l1, l2, l3].",
         "joint_limits_deg": "The joint limits used, or null.",
         "length_unit": "The length unit.",
-        "method": "'exact-closed-form' (revolute joints) or 'orientation-sampling' (limits).",
+        "method": "'exact-closed-form' (revolute joints), or under joint limits "
+        "'exact-events' or 'orientation-sampling' (the input method).",
         "discretisation": "Grid (bounds, points_per_axis, step), effective orientation step "
-        "and sample count, elbow branches, method for task points and trajectory samples, "
-        "radial section.",
+        "and sample count (sampling) or events per point and unused_inputs (exact events), "
+        "elbow branches, method for task points and trajectory samples, radial section.",
         "regions": "The paper's regions 1-4 (distance ranges), its claim for each, and the "
         "exact finding (fully dexterous bands inside, d_z range along a ray).",
-        "full_dexterity_bands": "Exact radii [[r0, r1], ...] where d_z = 1 (revolute joints).",
-        "areas": "Exact reachable and fully dexterous areas (revolute joints), their grid "
-        "estimates for this map, and the cell area.",
+        "full_dexterity_bands": "Exact radii [[r0, r1], ...] where d_z = 1 for revolute "
+        "joints (under joint limits a reference only).",
+        "areas": "Reachable and fully dexterous areas: exact for revolute joints; under joint "
+        "limits the limited arm's, counted on the map, with unlimited_reference; their grid "
+        "estimates, the cell area and how they were obtained (method).",
         "summary": "d_z_max, mean d_z and D over reachable nodes, node counts.",
         "task_points": "Per task point, in order: label, x, y, distance, d_z, D, region.",
         "trajectory": "Along the sampled trajectory: samples, d_z_mean, D_mean (eq 4), "
@@ -115,7 +136,8 @@ SYNTHESIS = ProcessDefinition(
         "dexterity and, listed again under paper_errata, the paper's errata when the inputs "
         "are its examples. "
         + _LIMITS_TEXT.format(
-            unit="grid points x (2 + orientation samples of Case 3 if joint limits are given)"
+            unit="grid points x (2 + orientations tested per point in Case 3, if joint "
+            "limits are given)"
         )
     ),
     inputs_model=SynthesisSpec,
@@ -141,10 +163,68 @@ SYNTHESIS = ProcessDefinition(
         "D, region.",
         "cases": "Cases 1-3: links, limits, bands and areas, task points, trajectory "
         "summary, whether all task points are fully dexterous.",
-        "discretisation": "Plot grid, orientation sampling of Case 3, task-point method.",
+        "discretisation": "Plot grid, Case 3's orientations (sampling or exact events), "
+        "task-point method.",
         "length_unit": "The length unit.",
     },
     cost=synthesis_cost,
+    cost_limit=COST_LIMIT,
+    time_limit_s=TIME_LIMIT_S,
+)
+
+DESIGN = ProcessDefinition(
+    id="planar3r-design",
+    title="Three-link planar arm: link lengths designed for the task under joint limits",
+    method_doc="planar-serial",
+    files=(
+        *figure_files("design_maps", "d_z of the paper's rule and the optimum"),
+        *figure_files("convergence", "Best design per generation"),
+        ProcessFile(
+            "design_maps.npz", "d_z maps of the paper's rule and the optimum (NumPy arrays)"
+        ),
+        ProcessFile("convergence.csv", "Best design per generation (CSV)"),
+    ),
+    description=(
+        "Link lengths l1, l2, l3 (and, with base_box, the base position) chosen for task "
+        "points and/or a trajectory under the joint limits the arm really has: objective "
+        "'max_min_dz' maximises the smallest d_z over the task, 'min_length' finds the "
+        "shortest arm keeping d_z >= dz_target everywhere, within link_bounds and "
+        "total_length_max. d_z is exact (closed-form events under joint limits); the search "
+        "is seeded differential evolution (every generation run) polished by Nelder-Mead, "
+        "deterministic for a seed. Reports the optimum with d_z at every task point and "
+        "along the trajectory, the paper's rule (eqs 10-11) under the same limits and the "
+        "improvement over it, the convergence (evaluations, best per generation, success, "
+        "message), the two d_z maps and the convergence curve (docs/methods/planar-serial.md). "
+        + _LIMITS_TEXT.format(
+            unit="designs evaluated x task points and trajectory samples x orientations "
+            "tested per point (1 without joint limits, at most 21 sub-arcs under them), "
+            "plus the two maps"
+        )
+    ),
+    inputs_model=DesignSpec,
+    run=_run_design,
+    examples=DESIGN_EXAMPLES,
+    outputs={
+        "objective": "'max_min_dz' or 'min_length'.",
+        "dz_target": "The target d_z of 'min_length' (null for 'max_min_dz').",
+        "joint_limits_deg": "The joint limits used, or null.",
+        "method": "How d_z was computed: 'exact-events' (joint limits) or 'exact-closed-form'.",
+        "optimum": "links, base, min_dz, mean_dz, total_length, meets_target (min_length), "
+        "task_points [{label, x, y, d_z}], trajectory (samples, d_z_mean, D_mean, d_z_min, "
+        "fully_dexterous_fraction) or null.",
+        "paper_rule": "The same record for eqs (10)-(11) with the base at the origin and the "
+        "same limits, with d_min_used, d_max_used and how l3 was chosen; null if no l3 fits.",
+        "improvement": "max_min_dz: gain in min_dz (absolute and relative); min_length: "
+        "length saved and whether each design meets the target. Null without paper_rule.",
+        "convergence": "success, message, seed, evaluations, generations, "
+        "best_per_generation [{generation, min_dz, total_length, score}], global_search "
+        "and polish details.",
+        "search_space": "link_bounds (defaults resolved), total_length_max, base_box, "
+        "free_variables.",
+        "evaluation_points": "How many task points and trajectory samples the objective uses.",
+        "length_unit": "The length unit.",
+    },
+    cost=design_cost,
     cost_limit=COST_LIMIT,
     time_limit_s=TIME_LIMIT_S,
 )
@@ -153,4 +233,5 @@ SYNTHESIS = ProcessDefinition(
 PROCESSES = (
     DEXTERITY_MAP,
     SYNTHESIS,
+    DESIGN,
 )

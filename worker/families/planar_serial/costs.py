@@ -1,18 +1,25 @@
 """Work limits of the planar3r jobs, checked by the service before a job is queued.
 
-Cost is counted in grid points x orientation samples: the exact closed form costs one
-unit per grid point, orientation sampling under joint limits one per point and sample.
+Cost is counted in grid points x orientations tested: the exact closed form costs one
+unit per grid point; under joint limits the exact events cost one per point and sub-arc
+between events (at most 21), orientation sampling one per point and sample.
 """
 
 from __future__ import annotations
 
-from worker.families.planar_serial.jobs.dexterity_evaluation import orientation_sampling
+import numpy as np
+
+from worker.families.planar_serial.design_spec import POLISH_EVALUATIONS_PER_VARIABLE, DesignSpec
+from worker.families.planar_serial.jobs.dexterity_evaluation import limited_joints
+from worker.families.planar_serial.kinematics.limited_exact import event_count
 from worker.families.planar_serial.specs import DexterityMapSpec, GridSpec, SynthesisSpec
 
 __all__ = [
     "COST_LIMIT",
     "SYNC_COST_LIMIT",
     "TIME_LIMIT_S",
+    "design_cost",
+    "design_evaluations",
     "dexterity_map_cost",
     "synthesis_cost",
 ]
@@ -31,23 +38,57 @@ def _grid_points(grid: GridSpec) -> int:
 
 
 def _samples(spec: DexterityMapSpec | SynthesisSpec) -> int:
-    """Orientation samples per grid point under the joint limits; 1 without limits.
+    """Orientations tested per grid point under the joint limits; 1 without limits.
 
     Limits that all span the full turn [-180, 180] are run by the exact closed form.
     """
-    sampling = orientation_sampling(spec.joint_limits_deg, spec.orientation_step_deg)
-    return 1 if sampling is None else sampling.samples
+    limited = limited_joints(spec.joint_limits_deg, spec.orientation_step_deg, spec.method)
+    return 1 if limited is None else limited.evaluations_per_point
 
 
 def dexterity_map_cost(spec: DexterityMapSpec) -> int:
-    """Grid points x (orientation samples under joint limits, else 1)."""
+    """Grid points x (orientations tested per point under joint limits, else 1)."""
     return _grid_points(spec.grid) * _samples(spec)
 
 
 def synthesis_cost(spec: SynthesisSpec) -> int:
-    """Grid points x (2 + orientation samples of Case 3 when joint limits are given).
+    """Grid points x (2 + orientations tested per point in Case 3, with joint limits).
 
-    Cases 1 and 2 are exact maps (one unit per point each); Case 3 is sampled.
+    Cases 1 and 2 are closed-form maps (one unit per point each).
     """
     case_3 = _samples(spec) if spec.joint_limits_deg is not None else 0
     return _grid_points(spec.grid) * (2 + case_3)
+
+
+def design_evaluations(spec: DesignSpec) -> int:
+    """Most designs the search evaluates: population x (generations + 1), the polish
+    (at most 200 per free variable), one per generation for the convergence record."""
+    variables = spec.free_variables
+    global_stage = spec.population_size * variables * (spec.max_generations + 1)
+    return global_stage + POLISH_EVALUATIONS_PER_VARIABLE * variables + spec.max_generations
+
+
+#: The fixed cost of evaluating one design, in evaluation points (numpy's per-call
+#: overhead costs about as much as 200 points).
+DESIGN_OVERHEAD_POINTS = 200
+
+
+def design_cost(spec: DesignSpec) -> int:
+    """Designs evaluated x (evaluation points + 200 for the per-design overhead) x
+    orientations tested per point, plus the two maps of the plots (grid points x
+    orientations tested).
+
+    Exact d_z tests one orientation per point without joint limits, one per sub-arc
+    between events (at most 21) under them.
+    """
+    limits = spec.joint_limits_deg
+    if limits is None or all(lo <= -180.0 and hi >= 180.0 for lo, hi in limits):
+        per_point = 1
+    else:
+        radians = np.radians(np.asarray(limits, dtype=float))
+        per_point = event_count(radians) + 1
+    points = len(spec.task_points or ()) + (
+        spec.trajectory.samples if spec.trajectory is not None else 0
+    )
+    search = design_evaluations(spec) * (points + DESIGN_OVERHEAD_POINTS) * per_point
+    return search + 2 * _grid_points(spec.grid) * per_point

@@ -13,6 +13,7 @@ from typing import Any
 from worker.processes import ProcessExample
 
 __all__ = [
+    "DESIGN_EXAMPLES",
     "DEXTERITY_MAP_EXAMPLES",
     "EXAMPLE_1_CUBIC",
     "EXAMPLE_1_DESIGN",
@@ -125,11 +126,10 @@ DEXTERITY_MAP_EXAMPLES = (
     ),
     ProcessExample(
         title="Example 1, Case 3: the design (15, 14, 8) under joint limits",
-        inputs=MappingProxyType(
-            {**_EXAMPLE_1_MAP, "joint_limits_deg": _limits(), "orientation_step_deg": 1.0}
-        ),
-        description="th1, th2 in [-150, 150] and th3 in [-175, 175] degrees (Fig 11), "
-        "orientation sampled every 1 degree; task points B..E lose full dexterity.",
+        inputs=MappingProxyType({**_EXAMPLE_1_MAP, "joint_limits_deg": _limits()}),
+        description="th1, th2 in [-150, 150] and th3 in [-175, 175] degrees (Fig 11), d_z "
+        "exact by events (the default method); task points B..E lose full dexterity "
+        "(E: d_z = 0.7273).",
     ),
     ProcessExample(
         title="Example 2, Case 1: the design (23, 22, 15) at its seven task points",
@@ -144,5 +144,86 @@ DEXTERITY_MAP_EXAMPLES = (
         description="Exact d_z on a 101 x 101 grid: every task point A..G is fully "
         "dexterous with unlimited joints.  Small enough to answer synchronously "
         "(Prefer: wait=N).",
+    ),
+    ProcessExample(
+        title="Example 1, Case 3 by orientation sampling (the reference method)",
+        inputs=MappingProxyType(
+            {
+                **_EXAMPLE_1_MAP,
+                "joint_limits_deg": _limits(),
+                "method": "orientation-sampling",
+                "orientation_step_deg": 1.0,
+            }
+        ),
+        description="The same map with orientations sampled every 1 degree, as the "
+        "paper does: map values come in steps of 1/360 (task points are refined by "
+        "bisection); compare with the exact example above.",
+    ),
+)
+
+_EXAMPLE_1_DESIGN: dict[str, Any] = {
+    "trajectory": _EXAMPLE_1_TRAJECTORY,
+    "task_points": _points(EXAMPLE_1_TASK_POINTS),
+    "task_labels": list(EXAMPLE_1_LABELS),
+    "joint_limits_deg": _limits(),
+    "total_length_max": 37.0,
+    "paper_l3": EXAMPLE_1_L3,
+    "round_distances": True,
+}
+_EXAMPLE_2_DESIGN: dict[str, Any] = {
+    "task_points": _points(EXAMPLE_2_TASK_POINTS),
+    "task_labels": list(EXAMPLE_2_LABELS),
+    "joint_limits_deg": _limits(),
+    "total_length_max": 60.0,
+    "paper_l3": EXAMPLE_2_L3,
+}
+#: Example 1 with the paper's tool length kept as the least l3.
+_EXAMPLE_1_TOOL = [[1.0, 37.0], [1.0, 37.0], [EXAMPLE_1_L3, 37.0]]
+
+DESIGN_EXAMPLES = (
+    ProcessExample(
+        title="Example 1 under its joint limits, total length at most 37",
+        inputs=MappingProxyType(_EXAMPLE_1_DESIGN),
+        description="The cubic trajectory and task points A..E with th1, th2 in [-150, 150] "
+        "and th3 in [-175, 175] degrees: the paper's rule gives (15, 14, 8) and a worst "
+        "d_z of 0.727 (at E); the optimum within the same 37 units keeps every point fully "
+        "dexterous with a short last link.",
+    ),
+    ProcessExample(
+        title="Example 1 with the paper's tool length kept (l3 >= 8)",
+        inputs=MappingProxyType({**_EXAMPLE_1_DESIGN, "link_bounds": _EXAMPLE_1_TOOL}),
+        description="The same task with l3 at least the paper's 8: the optimum spends "
+        "the 37 units differently and lifts the worst d_z from 0.727 to about 0.760.",
+    ),
+    ProcessExample(
+        title="Example 1 with the base free in a 10 x 10 box (l3 >= 8)",
+        inputs=MappingProxyType(
+            {**_EXAMPLE_1_DESIGN, "link_bounds": _EXAMPLE_1_TOOL, "base_box": [-5, 5, -5, 5]}
+        ),
+        description="Moving the base as well: with l3 >= 8 and total length 37 the task "
+        "becomes fully dexterous everywhere.",
+    ),
+    ProcessExample(
+        title="Example 2 under its joint limits, total length at most 60",
+        inputs=MappingProxyType(_EXAMPLE_2_DESIGN),
+        description="Seven task points A..G: the rule's (23, 22, 15) leaves B at d_z = "
+        "0.777; the optimum within 60 units raises the worst point to about 0.97.",
+    ),
+    ProcessExample(
+        title="Shortest arm keeping Example 1's task points fully dexterous",
+        inputs=MappingProxyType(
+            {
+                "task_points": _points(EXAMPLE_1_TASK_POINTS),
+                "task_labels": list(EXAMPLE_1_LABELS),
+                "joint_limits_deg": _limits(),
+                "objective": "min_length",
+                "dz_target": 1.0,
+                "total_length_max": 37.0,
+                "paper_l3": EXAMPLE_1_L3,
+                "round_distances": True,
+            }
+        ),
+        description="objective 'min_length': the least l1 + l2 + l3 that keeps d_z = 1 at "
+        "A..E under the joint limits (the rule's 37 units do not).",
     ),
 )

@@ -8,7 +8,7 @@ Lengths are in the caller's ``length_unit``, angles in degrees.
 from __future__ import annotations
 
 import math
-from typing import Annotated, Any
+from typing import Annotated, Any, Literal
 
 import numpy as np
 from pydantic import (
@@ -44,6 +44,7 @@ __all__ = [
     "PolylineTrajectory",
     "PolynomialTrajectory",
     "SynthesisSpec",
+    "TaskInputs",
     "Trajectory",
     "default_task_labels",
 ]
@@ -214,9 +215,17 @@ _LIMITS_DESCRIPTION = (
 _TASK_POINTS_DESCRIPTION = f"Task points [[x, y], ...] (at most {MAX_TASK_POINTS})."
 _LABELS_DESCRIPTION = "Labels of the task points, one each (default A, B, C, ...)."
 _STEP_DESCRIPTION = (
-    "Orientation sampling step in degrees, used only with joint limits "
+    "Orientation sampling step in degrees, used only with joint limits and method "
+    "'orientation-sampling' "
     f"({MIN_ORIENTATION_STEP_DEG:g}..{MAX_ORIENTATION_STEP_DEG:g}). The n = round(360 / step) "
     "samples are spaced exactly 360/n apart; that effective step is reported."
+)
+_METHOD_DESCRIPTION = (
+    "How d_z is computed under joint limits: 'exact-events' (default) sums the feasible "
+    "orientation arcs between closed-form events (a joint at a limit, the wrist at the "
+    "edge of the two-link annulus), exact to rounding; 'orientation-sampling' counts "
+    "orientations every orientation_step_deg (task points refined by bisection). "
+    "Without joint limits the exact closed form is used either way."
 )
 _UNIT_DESCRIPTION = "Name of the length unit, used in plots and reported back."
 
@@ -246,17 +255,14 @@ def _check_joint_limits(limits: JointLimitsDeg | None) -> JointLimitsDeg | None:
     return limits
 
 
-class _TaskSpec(FrozenSpec):
-    """Fields shared by both jobs."""
+class TaskInputs(FrozenSpec):
+    """Fields shared by every planar3r job: limits, grid, task, unit, plots."""
 
     joint_limits_deg: Annotated[
         JointLimitsDeg | None,
         _three_entries("joint_limits_deg needs one [lo, hi] pair per joint (3)"),
         AfterValidator(_check_joint_limits),
     ] = Field(None, description=_LIMITS_DESCRIPTION)
-    orientation_step_deg: float = Field(
-        1.0, ge=MIN_ORIENTATION_STEP_DEG, le=MAX_ORIENTATION_STEP_DEG, description=_STEP_DESCRIPTION
-    )
     grid: GridSpec = Field(default_factory=GridSpec, description="The evaluation grid.")
     task_points: tuple[Point, ...] | None = Field(
         None,
@@ -283,7 +289,7 @@ class _TaskSpec(FrozenSpec):
     )
 
     @model_validator(mode="after")
-    def _labels_match_points(self) -> _TaskSpec:
+    def _labels_match_points(self) -> TaskInputs:
         if self.task_labels is not None:
             if self.task_points is None:
                 raise ValueError("task_labels given without task_points")
@@ -300,6 +306,17 @@ class _TaskSpec(FrozenSpec):
         if self.task_labels is not None:
             return self.task_labels
         return default_task_labels(len(self.task_points or ()))
+
+
+class _TaskSpec(TaskInputs):
+    """Fields shared by the map and synthesis jobs: how d_z is evaluated under limits."""
+
+    orientation_step_deg: float = Field(
+        1.0, ge=MIN_ORIENTATION_STEP_DEG, le=MAX_ORIENTATION_STEP_DEG, description=_STEP_DESCRIPTION
+    )
+    method: Literal["exact-events", "orientation-sampling"] = Field(
+        "exact-events", description=_METHOD_DESCRIPTION
+    )
 
 
 class _ArmSpec(FrozenSpec):

@@ -307,8 +307,8 @@ def test_process_definition(process: Any) -> None:
 
 def test_processes_are_registered_after_planar3r() -> None:
     ids = default_registry().ids()
-    assert ids.index("planar2dof-conditioning-map") == ids.index("planar3r-synthesis") + 1
-    assert ids.index("planar2dof-optimisation") == ids.index("planar3r-synthesis") + 2
+    assert ids.index("planar2dof-conditioning-map") == ids.index("planar3r-design") + 1
+    assert ids.index("planar2dof-optimisation") == ids.index("planar3r-design") + 2
 
 
 def test_public_field_names() -> None:

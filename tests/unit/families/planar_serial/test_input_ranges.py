@@ -1,4 +1,5 @@
-"""Every accepted input computes: ``planar3r-dexterity-map`` and ``planar3r-synthesis``.
+"""Every accepted input computes: ``planar3r-dexterity-map``, ``planar3r-synthesis`` and
+``planar3r-design``.
 
 Link lengths are drawn log-uniformly across [1e-6, 1e6] and just outside, task points
 and trajectories across the coordinate range; a value outside must be refused naming
@@ -133,3 +134,50 @@ def test_synthesis_accepted_inputs_compute(
     if not MIN_LENGTH <= l3 <= MAX_LENGTH:
         bad.add("inputs.l3")
     check_request(SYNTHESIS, raw, bad, cost_limit=10**8)
+
+
+DESIGN = definition("planar3r-design")
+
+
+@given(
+    total=length,
+    task=st.lists(point, min_size=1, max_size=4),
+    joint_limits=limits,
+    lowest=st.one_of(st.none(), length),
+    box=st.one_of(st.none(), st.tuples(coordinate, coordinate).map(sorted)),
+)
+@example(total=1e-6, task=[[1e6, 1e6]], joint_limits=None, lowest=None, box=None)
+@example(total=1e6, task=[[1e-6, 0.0]], joint_limits=[[-150, 150], [-150, 150], [-175, 175]],
+         lowest=1e-6, box=None)  # fmt: skip
+@example(total=10.0, task=[[0.0, 0.0]], joint_limits=[[0, 90], [-45, 45], [-180, 180]],
+         lowest=None, box=(-1e6, 1e6))  # fmt: skip
+@property_settings(12)
+def test_design_accepted_inputs_compute(
+    total: float, task: list[list[float]], joint_limits: Any, lowest: float | None,
+    box: tuple[float, float] | None,
+) -> None:  # fmt: skip
+    raw: dict[str, Any] = {
+        "task_points": task,
+        "total_length_max": total,
+        "grid": {"points_per_axis": 11},
+        "max_generations": 2,
+        "population_size": 5,
+    }
+    if joint_limits is not None:
+        raw["joint_limits_deg"] = joint_limits
+    if lowest is not None:
+        raw["link_bounds"] = [[lowest, total]] * 3
+    if box is not None:
+        raw["base_box"] = [box[0], box[1], box[0], box[1]]
+    bad = points_outside(task)
+    if not MIN_LENGTH <= total <= MAX_LENGTH:
+        bad.add("inputs.total_length_max")
+    elif lowest is not None and (
+        not MIN_LENGTH <= lowest <= MAX_LENGTH
+        or 3 * lowest > total
+        or total / lowest > MAX_LENGTH_RATIO
+    ):
+        bad.add("inputs.link_bounds")
+    if box is not None and (box[0] >= box[1] or any(abs(c) > MAX_COORDINATE for c in box)):
+        bad.add("inputs.base_box")
+    check_request(DESIGN, raw, bad, cost_limit=10**8)

@@ -192,8 +192,18 @@ def test_map_cost_is_grid_points_without_limits() -> None:
 
 
 def test_map_cost_counts_orientation_samples_under_limits() -> None:
-    spec = map_spec(joint_limits_deg=LIMITS, orientation_step_deg=1.0)
+    spec = map_spec(
+        joint_limits_deg=LIMITS, orientation_step_deg=1.0, method="orientation-sampling"
+    )
     assert dexterity_map_cost(spec) == 201**2 * 360
+
+
+def test_exact_map_cost_counts_sub_arcs_under_limits() -> None:
+    # 16 events (8 conditions, two roots each) and the cut at 0: 17 sub-arcs per point
+    spec = map_spec(joint_limits_deg=LIMITS, orientation_step_deg=1.0)
+    assert dexterity_map_cost(spec) == 201**2 * 17
+    one_joint = map_spec(joint_limits_deg=[[-180, 180], [-90, 90], [-180, 180]])
+    assert dexterity_map_cost(one_joint) == 201**2 * 9
 
 
 def test_full_turn_limits_cost_like_no_limits() -> None:
@@ -203,8 +213,9 @@ def test_full_turn_limits_cost_like_no_limits() -> None:
 
 def test_cost_limit_admits_2001_squared_at_half_a_degree() -> None:
     spec = map_spec(
-        joint_limits_deg=LIMITS, orientation_step_deg=0.5, grid={"points_per_axis": 2001}
-    )
+        joint_limits_deg=LIMITS, orientation_step_deg=0.5, grid={"points_per_axis": 2001},
+        method="orientation-sampling",
+    )  # fmt: skip
     assert dexterity_map_cost(spec) == 2001**2 * 720 <= COST_LIMIT
     finer = spec.model_copy(update={"orientation_step_deg": 0.4})
     assert dexterity_map_cost(finer) == 2001**2 * 900 > COST_LIMIT
@@ -213,7 +224,9 @@ def test_cost_limit_admits_2001_squared_at_half_a_degree() -> None:
 def test_synthesis_cost() -> None:
     assert synthesis_cost(synthesis_spec()) == 2 * 201**2
     limited = synthesis_spec(joint_limits_deg=LIMITS, orientation_step_deg=2.0)
-    assert synthesis_cost(limited) == (2 + 180) * 201**2
+    assert synthesis_cost(limited) == (2 + 17) * 201**2
+    sampled = limited.model_copy(update={"method": "orientation-sampling"})
+    assert synthesis_cost(sampled) == (2 + 180) * 201**2
     full_turn = synthesis_spec(joint_limits_deg=[[-180, 180]] * 3)
     assert synthesis_cost(full_turn) == 3 * 201**2
 
@@ -237,12 +250,12 @@ def test_process_definition(process: Any) -> None:
 
 def test_public_field_names() -> None:
     assert set(DexterityMapSpec.model_json_schema()["properties"]) == {
-        "links", "joint_limits_deg", "grid", "orientation_step_deg", "task_points",
-        "task_labels", "trajectory", "length_unit", "plots",
+        "links", "joint_limits_deg", "grid", "orientation_step_deg", "method",
+        "task_points", "task_labels", "trajectory", "length_unit", "plots",
     }  # fmt: skip
     assert set(SynthesisSpec.model_json_schema()["properties"]) == {
         "task_points", "task_labels", "trajectory", "l3", "joint_limits_deg",
-        "round_distances", "orientation_step_deg", "grid", "length_unit", "plots",
+        "round_distances", "orientation_step_deg", "method", "grid", "length_unit", "plots",
     }  # fmt: skip
 
 

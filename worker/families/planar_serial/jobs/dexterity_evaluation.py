@@ -1,9 +1,11 @@
-"""d_z on grids and at points: exact for revolute joints, sampled under joint limits.
+"""d_z on grids and at points: exact for revolute joints, exact or sampled under limits.
 
-With fully revolute joints d_z has a closed form (docs/methods/planar-serial.md); under
-joint limits it is counted over sampled orientations, inverse kinematics over both elbow
-branches.  The grid is evaluated by plain sampling, task points and trajectory samples
-with their transitions refined by bisection to :data:`REFINE_TOL_RAD`.
+With fully revolute joints d_z has a closed form (docs/methods/planar-serial.md).  Under
+joint limits the default ``exact-events`` method sums the feasible arcs between the
+closed-form events (:mod:`..kinematics.limited_exact`); ``orientation-sampling`` counts
+sampled orientations (inverse kinematics over both elbow branches), the grid by plain
+sampling, task points and trajectory samples with their transitions refined by
+bisection to :data:`REFINE_TOL_RAD`.
 """
 
 from __future__ import annotations
@@ -12,22 +14,31 @@ import itertools
 import math
 from collections.abc import Callable
 from dataclasses import dataclass
+from typing import Literal
 
 import numpy as np
 from numpy.typing import NDArray
 
 from worker.common.grids import WorkspaceGrid
 from worker.families.planar_serial import kinematics as planar_serial
+from worker.families.planar_serial.kinematics.limited_exact import (
+    event_count,
+    exact_limited_orientation_dexterity,
+)
 from worker.families.planar_serial.specs import GridSpec, JointLimitsDeg
 
 __all__ = [
     "FULL_DEXTERITY_TOL",
     "REFINE_TOL_RAD",
-    "OrientationSampling",
+    "LimitedJoints",
+    "LimitedMethod",
     "WorkspaceGrid",
     "grid_dexterity",
-    "orientation_sampling",
+    "limited_joints",
+    "map_method",
+    "orientations",
     "point_dexterity",
+    "point_method",
     "workspace_grid",
 ]
 
@@ -52,30 +63,71 @@ def workspace_grid(spec: GridSpec, links: Links) -> WorkspaceGrid:
     return WorkspaceGrid((-half, half, -half, half), spec.points_per_axis)
 
 
+LimitedMethod = Literal["exact-events", "orientation-sampling"]
+
+
 @dataclass(frozen=True)
-class OrientationSampling:
-    """Joint limits (rad, (3, 2)) and the orientation step used under them."""
+class LimitedJoints:
+    """Joint limits (rad, (3, 2)), the method under them and the orientation sampling.
+
+    The sampling (requested and effective step, sample count) drives only the
+    ``orientation-sampling`` method; ``exact-events`` reports it unused.
+    """
 
     joint_limits_rad: FloatArray
+    method: LimitedMethod
     requested_step_rad: float
     samples: int
     effective_step_rad: float
 
     @property
+    def sampled(self) -> bool:
+        return self.method == "orientation-sampling"
+
+    @property
     def effective_step_deg(self) -> float:
         return math.degrees(self.effective_step_rad)
 
+    @property
+    def events_per_point(self) -> int:
+        """Closed-form events per point (two per condition) under these limits."""
+        return event_count(self.joint_limits_rad)
 
-def orientation_sampling(
-    joint_limits_deg: JointLimitsDeg | None, step_deg: float
-) -> OrientationSampling | None:
-    """The sampling for limited joints, or None when every joint turns fully."""
+    @property
+    def evaluations_per_point(self) -> int:
+        """Orientations tested per point: samples, or one per sub-arc between events."""
+        return self.samples if self.sampled else self.events_per_point + 1
+
+    def describe(self) -> dict[str, object]:
+        """The ``discretisation`` entries of the orientations under joint limits."""
+        if self.sampled:
+            return {
+                "orientation_step_deg": self.effective_step_deg,
+                "orientation_samples": self.samples,
+                "elbow_branches": 2,
+            }
+        return {
+            "orientation_step_deg": None,
+            "orientation_samples": None,
+            "elbow_branches": 2,
+            "events_per_point": self.events_per_point,
+            "unused_inputs": ["orientation_step_deg"],
+        }
+
+
+def limited_joints(
+    joint_limits_deg: JointLimitsDeg | None,
+    step_deg: float,
+    method: LimitedMethod = "exact-events",
+) -> LimitedJoints | None:
+    """The evaluation under joint limits, or None when every joint turns fully."""
     if joint_limits_deg is None or all(lo <= -180.0 and hi >= 180.0 for lo, hi in joint_limits_deg):
         return None
     step_rad = math.radians(step_deg)
     samples, effective = planar_serial.orientation_samples(step_rad)
-    return OrientationSampling(
+    return LimitedJoints(
         joint_limits_rad=np.radians(np.asarray(joint_limits_deg, dtype=float)),
+        method=method,
         requested_step_rad=step_rad,
         samples=int(samples),
         effective_step_rad=float(effective),
@@ -85,12 +137,12 @@ def orientation_sampling(
 def grid_dexterity(
     links: Links,
     grid: WorkspaceGrid,
-    sampling: OrientationSampling | None,
+    limited: LimitedJoints | None,
     on_progress: Callable[[int, int], None],
 ) -> FloatArray:
     """d_z at every node, (ny, nx); ``on_progress(done, total)`` after each chunk."""
     points = grid.points()
-    if sampling is None:
+    if limited is None:
         ny = points.shape[0]
         d_z = np.empty(points.shape[:2])
         edges = np.linspace(0, ny, min(EXACT_ROW_BLOCKS, ny) + 1).astype(int)
@@ -98,40 +150,56 @@ def grid_dexterity(
             d_z[start:stop] = planar_serial.exact_orientation_dexterity(links, points[start:stop])
             on_progress(stop, ny)
         return d_z
+    if not limited.sampled:
+        return exact_limited_orientation_dexterity(
+            links, points, limited.joint_limits_rad, on_chunk=on_progress
+        )
     return np.asarray(
         planar_serial.limited_orientation_dexterity(
             links,
             points,
-            sampling.joint_limits_rad,
-            sampling.requested_step_rad,
+            limited.joint_limits_rad,
+            limited.requested_step_rad,
             on_chunk=on_progress,
         ),
         dtype=float,
     )
 
 
-def point_dexterity(
-    links: Links, points: FloatArray, sampling: OrientationSampling | None
-) -> FloatArray:
-    """d_z at ``points`` (n, 2) -> (n,): exact, or sampled and bisection-refined."""
+def point_dexterity(links: Links, points: FloatArray, limited: LimitedJoints | None) -> FloatArray:
+    """d_z at ``points`` (n, 2) -> (n,): closed form, exact events, or sampled and refined."""
     if points.shape[0] == 0:
         return np.zeros(0)
-    if sampling is None:
+    if limited is None:
         return np.asarray(planar_serial.exact_orientation_dexterity(links, points), dtype=float)
+    if not limited.sampled:
+        return exact_limited_orientation_dexterity(links, points, limited.joint_limits_rad)
     return np.asarray(
         planar_serial.limited_orientation_dexterity(
             links,
             points,
-            sampling.joint_limits_rad,
-            sampling.requested_step_rad,
+            limited.joint_limits_rad,
+            limited.requested_step_rad,
             refine_tol=REFINE_TOL_RAD,
         ),
         dtype=float,
     )
 
 
-def point_method(sampling: OrientationSampling | None) -> str:
+def orientations(limited: LimitedJoints | None) -> dict[str, object]:
+    """The ``discretisation`` entries of the orientations (all null without limits)."""
+    if limited is None:
+        return {"orientation_step_deg": None, "orientation_samples": None, "elbow_branches": None}
+    return limited.describe()
+
+
+def map_method(limited: LimitedJoints | None) -> str:
+    """How the map was computed, as reported in ``method``."""
+    return "exact-closed-form" if limited is None else limited.method
+
+
+def point_method(limited: LimitedJoints | None) -> str:
     """How task points are evaluated, as reported in ``discretisation``."""
-    if sampling is None:
-        return "exact-closed-form"
+    if limited is None or not limited.sampled:
+        return map_method(limited)
     return f"bisection-refined (tol {REFINE_TOL_RAD:g} rad)"

@@ -1,9 +1,10 @@
 """The ``planar3r-dexterity-map`` job: d_z and D = d_z/3 over a grid (Patel & Sobh §2, §5).
 
-Exact closed form with fully revolute joints; orientation sampling (both elbow
-branches) under joint limits (docs/methods/planar-serial.md).  Reports the paper's regions
-next to the exact full-dexterity bands, areas, the task points and a trajectory, with
-CSV/NPZ data and three plots (heat map, 3-D surface, radial section).
+Exact closed form with fully revolute joints; under joint limits exact events (the
+default) or orientation sampling, both elbow branches (docs/methods/planar-serial.md).
+Reports the paper's regions next to the exact full-dexterity bands, areas (of the
+limited arm under joint limits), the task points and a trajectory, with CSV/NPZ data and
+three plots (heat map, 3-D surface, radial section).
 """
 
 from __future__ import annotations
@@ -14,20 +15,21 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from worker.common.data_export import DIMENSIONLESS, job_metadata, npz_artifact
 from worker.common.figures import figure_artifacts
 from worker.common.progress import ProgressReporter
 from worker.contract import Artifact, JobContext, JobOutcome
 from worker.families.planar_serial import kinematics as planar_serial
 from worker.families.planar_serial.errata import dexterity_map_errata_notes
-from worker.families.planar_serial.jobs.data_export import dexterity_csv
+from worker.families.planar_serial.jobs.data_export import dexterity_map_files
 from worker.families.planar_serial.jobs.dexterity_evaluation import (
     FULL_DEXTERITY_TOL,
+    LimitedJoints,
     Links,
-    OrientationSampling,
     WorkspaceGrid,
     grid_dexterity,
-    orientation_sampling,
+    limited_joints,
+    map_method,
+    orientations,
     point_dexterity,
     point_method,
     workspace_grid,
@@ -58,7 +60,7 @@ def run_dexterity_map(spec: DexterityMapSpec, ctx: JobContext) -> JobOutcome:
     progress.report(0.0, "starting")
     links: Links = spec.links
     grid = workspace_grid(spec.grid, links)
-    sampling = orientation_sampling(spec.joint_limits_deg, spec.orientation_step_deg)
+    sampling = limited_joints(spec.joint_limits_deg, spec.orientation_step_deg, spec.method)
     d_z = grid_dexterity(links, grid, sampling, progress.span(2.0, 80.0, "dexterity map"))
     distance = np.hypot(*np.meshgrid(grid.x, grid.y))
     region = planar_serial.paper_regions(links, distance)
@@ -88,11 +90,9 @@ def run_dexterity_map(spec: DexterityMapSpec, ctx: JobContext) -> JobOutcome:
     if spec.plots:
         progress.report(90.0, "plots")
         path = None if spec.trajectory is None else trajectory_path(spec.trajectory)
-        artifacts = _plots(
-            spec, sampling is not None, grid, d_z, task_xy, path, (radial_d, radial_dz)
-        )
+        artifacts = _plots(spec, sampling, grid, d_z, task_xy, path, (radial_d, radial_dz))
     progress.report(97.0, "data files")
-    artifacts += _data(spec, grid, d_z, region)
+    artifacts += dexterity_map_files(spec, grid, d_z, region)
     progress.report(100.0, "done")
     return JobOutcome(result=result, artifacts=artifacts, notes=tuple(notes), errata=tuple(errata))
 
@@ -103,28 +103,27 @@ def _radial_reach(links: Links) -> float:
 
 
 def _radial_section(
-    links: Links, distances: FloatArray, sampling: OrientationSampling | None
+    links: Links, distances: FloatArray, sampling: LimitedJoints | None
 ) -> FloatArray:
     angle = math.radians(RADIAL_ANGLE_DEG)
     points = np.stack([distances * math.cos(angle), distances * math.sin(angle)], axis=-1)
-    if sampling is None:
-        return planar_serial.exact_orientation_dexterity(links, points)
-    return planar_serial.limited_orientation_dexterity(
-        links, points, sampling.joint_limits_rad, sampling.requested_step_rad
-    )
+    if sampling is not None and sampling.sampled:
+        return planar_serial.limited_orientation_dexterity(
+            links, points, sampling.joint_limits_rad, sampling.requested_step_rad
+        )
+    return point_dexterity(links, points, sampling)
 
 
 def _result(
     spec: DexterityMapSpec,
     grid: WorkspaceGrid,
-    sampling: OrientationSampling | None,
+    sampling: LimitedJoints | None,
     d_z: FloatArray,
     task_entries: list[dict[str, Any]],
     trajectory: dict[str, float | int] | None,
 ) -> dict[str, Any]:
     links = spec.links
     bands = planar_serial.full_dexterity_bands(links)
-    inner, outer = planar_serial.reach_radii(links)
     reachable = d_z > 0.0
     full = d_z >= 1.0 - FULL_DEXTERITY_TOL
     reachable_dz = d_z[reachable]
@@ -133,29 +132,21 @@ def _result(
         "links": list(links),
         "joint_limits_deg": _limits_list(spec),
         "length_unit": spec.length_unit,
-        "method": "exact-closed-form" if sampling is None else "orientation-sampling",
+        "method": map_method(sampling),
         "discretisation": {
             "grid": grid.describe(),
-            "orientation_step_deg": None if sampling is None else sampling.effective_step_deg,
-            "orientation_samples": None if sampling is None else sampling.samples,
-            "elbow_branches": None if sampling is None else 2,
+            **orientations(sampling),
             "task_points": point_method(sampling),
             "radial_section": {
                 "angle_deg": RADIAL_ANGLE_DEG,
                 "samples": RADIAL_SAMPLES,
                 "d_to": _radial_reach(links),
-                "method": "exact-closed-form" if sampling is None else "orientation-sampling",
+                "method": map_method(sampling),
             },
         },
         "regions": region_table(links),
         "full_dexterity_bands": [list(band) for band in bands],
-        "areas": {
-            "reachable": math.pi * (outer**2 - inner**2),
-            "fully_dexterous": planar_serial.band_area(bands),
-            "reachable_grid": int(reachable.sum()) * grid.cell_area,
-            "fully_dexterous_grid": int(full.sum()) * grid.cell_area,
-            "cell_area": grid.cell_area,
-        },
+        "areas": _areas(links, grid, sampling, reachable, full),
         "summary": {
             "d_z_max": float(d_z.max()),
             "d_z_mean_reachable": mean_reachable,
@@ -169,6 +160,37 @@ def _result(
     }
 
 
+def _areas(
+    links: Links,
+    grid: WorkspaceGrid,
+    sampling: LimitedJoints | None,
+    reachable: NDArray[np.bool_],
+    full: NDArray[np.bool_],
+) -> dict[str, Any]:
+    """Reachable and fully dexterous areas: exact for revolute joints; under joint limits
+    those of the limited arm, counted on the map, with the revolute ones as a reference."""
+    bands = planar_serial.full_dexterity_bands(links)
+    inner, outer = planar_serial.reach_radii(links)
+    unlimited = {
+        "reachable": math.pi * (outer**2 - inner**2),
+        "fully_dexterous": planar_serial.band_area(bands),
+    }
+    on_grid = {
+        "reachable_grid": int(reachable.sum()) * grid.cell_area,
+        "fully_dexterous_grid": int(full.sum()) * grid.cell_area,
+        "cell_area": grid.cell_area,
+    }
+    if sampling is None:
+        return {**unlimited, **on_grid, "method": "exact-closed-form"}
+    return {
+        "reachable": on_grid["reachable_grid"],
+        "fully_dexterous": on_grid["fully_dexterous_grid"],
+        **on_grid,
+        "method": f"grid count of {sampling.method} d_z (joint-limited arm)",
+        "unlimited_reference": {**unlimited, "full_dexterity_bands": [list(b) for b in bands]},
+    }
+
+
 def _limits_list(spec: DexterityMapSpec) -> list[list[float]] | None:
     if spec.joint_limits_deg is None:
         return None
@@ -177,7 +199,7 @@ def _limits_list(spec: DexterityMapSpec) -> list[list[float]] | None:
 
 def _notes(
     spec: DexterityMapSpec,
-    sampling: OrientationSampling | None,
+    sampling: LimitedJoints | None,
     task_entries: list[dict[str, Any]],
     trajectory: dict[str, float | int] | None,
 ) -> list[str]:
@@ -186,13 +208,7 @@ def _notes(
         notes.append("Every joint limit spans the full turn [-180, 180]: the exact closed form "
                      "for unlimited joints was used.")  # fmt: skip
     if sampling is not None:
-        notes.append(
-            f"Under joint limits d_z is sampled every {sampling.effective_step_deg:.6g}° "
-            f"({sampling.samples} orientations, both elbow branches); the map is no longer "
-            "radially symmetric, so the radial section holds only along the ray at "
-            f"{RADIAL_ANGLE_DEG:g}° (task points are not marked on it). "
-            "'full_dexterity_bands' and the exact areas are for unlimited joints."
-        )
+        notes.append(_limited_note(spec, sampling))
     notes.extend(shortfall_notes(task_entries))
     if trajectory is not None and trajectory["fully_dexterous_fraction"] < 1.0:
         percent = 100.0 * trajectory["fully_dexterous_fraction"]
@@ -203,9 +219,30 @@ def _notes(
     return notes
 
 
+def _limited_note(spec: DexterityMapSpec, sampling: LimitedJoints) -> str:
+    if sampling.sampled:
+        how = (
+            f"sampled every {sampling.effective_step_deg:.6g}° ({sampling.samples} "
+            "orientations, both elbow branches; features narrower than a step can be missed)"
+        )
+    else:
+        how = (
+            "exact: the feasible orientation arcs between closed-form events (up to "
+            f"{sampling.events_per_point} per point, both elbow branches) are summed"
+        )
+        if "orientation_step_deg" in spec.model_fields_set:
+            how += "; orientation_step_deg is not used by this method"
+    return (
+        f"Under joint limits d_z is {how}. The map is no longer radially symmetric, so the "
+        f"radial section holds only along the ray at {RADIAL_ANGLE_DEG:g}° (task points are "
+        "not marked on it). The areas are the joint-limited arm's, counted on this map; "
+        "'full_dexterity_bands' and areas.unlimited_reference are for unlimited joints."
+    )
+
+
 def _plots(
     spec: DexterityMapSpec,
-    limited: bool,
+    sampling: LimitedJoints | None,
     grid: WorkspaceGrid,
     d_z: FloatArray,
     task_xy: FloatArray,
@@ -213,6 +250,7 @@ def _plots(
     radial: tuple[FloatArray, FloatArray],
 ) -> tuple[Artifact, ...]:
     links = spec.links
+    limited = sampling is not None
     l1, l2, l3 = links
     title = f"3R arm ({l1:g}, {l2:g}, {l3:g}){', joint-limited' if limited else ''}"
     radii = planar_serial.region_radii(links)
@@ -225,6 +263,7 @@ def _plots(
         task_points=points, task_labels=labels, trajectory=path,
         title=f"Dexterity map, {title}", length_unit=spec.length_unit,
         joint_limited=limited,
+        limited_method="exact-events" if sampling is None else sampling.method,
     )  # fmt: skip
     surface = plots.dexterity_surface_figure(
         grid.x, grid.y, shown, title=f"Dexterity surface, {title}", length_unit=spec.length_unit
@@ -236,7 +275,7 @@ def _plots(
         task_distances=np.hypot(task_xy[:, 0], task_xy[:, 1]).tolist() if marked else None,
         task_labels=labels if marked else None, title=f"Radial section, {title}",
         length_unit=spec.length_unit, angle_deg=RADIAL_ANGLE_DEG,
-        note=_sampling_note(spec),
+        note=_sampling_note(sampling),
     )  # fmt: skip
     return (
         *figure_artifacts(heatmap, "heatmap", "Dexterity d_z over the workspace"),
@@ -245,55 +284,13 @@ def _plots(
     )
 
 
-def _sampling_note(spec: DexterityMapSpec) -> str:
-    """Under joint limits d_z is sampled: the staircase of the curve is the sampling."""
-    if spec.joint_limits_deg is None:
+def _sampling_note(sampling: LimitedJoints | None) -> str:
+    """Under sampled joint limits, the staircase of the curve is the sampling."""
+    if sampling is None:
         return ""
-    step = spec.orientation_step_deg
+    if not sampling.sampled:
+        return r"joint-limited $d_z$, exact (feasible orientation arcs between events)"
     return (
-        rf"joint-limited $d_z$ sampled every {step:g}° of orientation: it comes in steps "
-        rf"of $1/{round(360.0 / step):d}$ (the staircase)"
+        rf"joint-limited $d_z$ sampled every {sampling.effective_step_deg:.4g}° of "
+        rf"orientation: it comes in steps of $1/{sampling.samples:d}$ (the staircase)"
     )
-
-
-def _data(
-    spec: DexterityMapSpec, grid: WorkspaceGrid, d_z: FloatArray, region: NDArray[np.int8]
-) -> tuple[Artifact, ...]:
-    limits = np.asarray(
-        spec.joint_limits_deg if spec.joint_limits_deg is not None else np.full((3, 2), np.nan)
-    )
-    csv = dexterity_csv(
-        "dexterity_map.csv", grid.x, grid.y, d_z, region, "Dexterity map (CSV)", spec.length_unit
-    )
-    length, none = spec.length_unit, DIMENSIONLESS
-    npz = npz_artifact(
-        "dexterity_map.npz",
-        {
-            "x": grid.x,
-            "y": grid.y,
-            "d_z": d_z,
-            "D": d_z / 3.0,
-            "region": region,
-            "links": np.asarray(spec.links),
-            "joint_limits_deg": limits,
-        },
-        "Dexterity map (NumPy arrays)",
-        units={
-            "x": length,
-            "y": length,
-            "d_z": none,
-            "D": none,
-            "region": none,
-            "links": length,
-            "joint_limits_deg": "deg",
-        },
-        axes={
-            "d_z": ("y", "x"),
-            "D": ("y", "x"),
-            "region": ("y", "x"),
-            "links": ("link",),
-            "joint_limits_deg": ("joint", "bound"),
-        },
-        metadata=job_metadata("planar3r-dexterity-map", spec.model_dump(mode="json")),
-    )
-    return csv, npz

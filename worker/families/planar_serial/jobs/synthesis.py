@@ -32,23 +32,25 @@ from worker.families.planar_serial.jobs.design_checks import (
 )
 from worker.families.planar_serial.jobs.dexterity_evaluation import (
     FULL_DEXTERITY_TOL,
+    LimitedJoints,
     Links,
-    OrientationSampling,
     WorkspaceGrid,
     grid_dexterity,
-    orientation_sampling,
+    limited_joints,
+    map_method,
+    orientations,
     point_dexterity,
     point_method,
     workspace_grid,
 )
 from worker.families.planar_serial.jobs.task_points import shortfall_notes, task_point_entries
 from worker.families.planar_serial.jobs.trajectories import (
-    trajectory_distance_range,
+    task_distance_range,
     trajectory_path,
     trajectory_samples,
     trajectory_summary,
 )
-from worker.families.planar_serial.kinematics.trajectory import DistanceRange, points_distance_range
+from worker.families.planar_serial.kinematics.trajectory import DistanceRange
 from worker.families.planar_serial.plots import figures as plots
 from worker.families.planar_serial.specs import SynthesisSpec
 
@@ -71,7 +73,7 @@ class CaseResult:
 
     case: int
     links: Links
-    sampling: OrientationSampling | None
+    sampling: LimitedJoints | None
     limited: bool
     d_z: FloatArray  # (ny, nx) on the plot grid
     task_points: list[dict[str, Any]]
@@ -83,22 +85,22 @@ def run_synthesis(spec: SynthesisSpec, ctx: JobContext) -> JobOutcome:
     progress = ProgressReporter(ctx)
     progress.report(0.0, "distance range and design")
     source = "trajectory" if spec.trajectory is not None else "task_points"
-    distances = _distance_range(spec)
+    distances = task_distance_range(spec.trajectory, spec.task_points)
     d_min_used, d_max_used = distances.d_min, distances.d_max
     if spec.round_distances:
         d_min_used, d_max_used = float(math.floor(d_min_used)), float(math.ceil(d_max_used))
     links = planar_serial.synthesise_links(d_min_used, d_max_used, spec.l3)
     l1, l2, l3 = links
     grid = workspace_grid(spec.grid, links)
-    sampling = orientation_sampling(spec.joint_limits_deg, spec.orientation_step_deg)
+    sampling = limited_joints(spec.joint_limits_deg, spec.orientation_step_deg, spec.method)
 
-    designs: list[tuple[int, Links, OrientationSampling | None, bool]] = [
+    designs: list[tuple[int, Links, LimitedJoints | None, bool]] = [
         (1, links, None, False),
         (2, (l1, l3, l2), None, False),
     ]
     if spec.joint_limits_deg is not None:
         designs.append((3, links, sampling, True))
-    weights = [1.0 if s is None else float(s.samples) for _, _, s, _ in designs]
+    weights = [1.0 if s is None else float(s.evaluations_per_point) for _, _, s, _ in designs]
     edges = np.concatenate([[0.0], np.cumsum(weights)]) / sum(weights) * 83.0 + 5.0
     cases = [
         _evaluate_case(spec, grid, *design, progress.span(lo, hi, CASE_LABELS[design[0]]))
@@ -126,10 +128,8 @@ def run_synthesis(spec: SynthesisSpec, ctx: JobContext) -> JobOutcome:
         "cases": [_case_entry(spec, grid, case) for case in cases],
         "discretisation": {
             "grid": grid.describe(),
-            "orientation_step_deg": None if sampling is None else sampling.effective_step_deg,
-            "orientation_samples": None if sampling is None else sampling.samples,
-            "elbow_branches": None if sampling is None else 2,
-            "task_points": point_method(sampling if spec.joint_limits_deg else None),
+            **orientations(sampling),
+            "task_points": point_method(sampling),
             "trajectory_samples": None if spec.trajectory is None else spec.trajectory.samples,
         },
         "length_unit": spec.length_unit,
@@ -144,12 +144,6 @@ def run_synthesis(spec: SynthesisSpec, ctx: JobContext) -> JobOutcome:
     return JobOutcome(result=result, artifacts=artifacts, notes=tuple(notes), errata=tuple(errata))
 
 
-def _distance_range(spec: SynthesisSpec) -> DistanceRange:
-    if spec.trajectory is not None:
-        return trajectory_distance_range(spec.trajectory)
-    return points_distance_range(np.asarray(spec.task_points, dtype=float))
-
-
 def _task_xy(spec: SynthesisSpec) -> FloatArray:
     return np.asarray(spec.task_points or (), dtype=float).reshape(-1, 2)
 
@@ -159,7 +153,7 @@ def _evaluate_case(
     grid: WorkspaceGrid,
     case: int,
     links: Links,
-    sampling: OrientationSampling | None,
+    sampling: LimitedJoints | None,
     limited: bool,
     on_progress: Callable[[int, int], None],
 ) -> CaseResult:
@@ -185,6 +179,9 @@ def _case_entry(spec: SynthesisSpec, grid: WorkspaceGrid, case: CaseResult) -> d
     reachable_area = math.pi * (outer**2 - inner**2)
     full_area = planar_serial.band_area(bands)
     full_grid = int(np.count_nonzero(case.d_z >= 1.0 - FULL_DEXTERITY_TOL)) * grid.cell_area
+    reachable_grid = int(np.count_nonzero(case.d_z > 0.0)) * grid.cell_area
+    if not exact:  # the joint-limited arm's own areas, counted on its map
+        full_area, reachable_area = full_grid, reachable_grid
     short = [e for e in case.task_points if e["d_z"] < 1.0 - FULL_DEXTERITY_TOL]
     return {
         "case": case.case,
@@ -195,13 +192,16 @@ def _case_entry(spec: SynthesisSpec, grid: WorkspaceGrid, case: CaseResult) -> d
             if case.limited and spec.joint_limits_deg is not None
             else None
         ),
-        "method": "orientation-sampling" if case.sampling is not None else "exact-closed-form",
+        "method": map_method(case.sampling),
         "full_dexterity_bands": [list(b) for b in bands] if exact else None,
-        "fully_dexterous_area": full_area if exact else None,
-        "reachable_area": reachable_area if exact else None,
-        "fully_dexterous_fraction": full_area / reachable_area if exact else None,
+        "fully_dexterous_area": full_area,
+        "reachable_area": reachable_area,
+        "fully_dexterous_fraction": full_area / reachable_area if reachable_area > 0 else 0.0,
+        "areas_method": "exact-closed-form"
+        if exact
+        else f"grid count of {map_method(case.sampling)} d_z (joint-limited arm)",
         "fully_dexterous_area_grid": full_grid,
-        "reachable_area_grid": int(np.count_nonzero(case.d_z > 0.0)) * grid.cell_area,
+        "reachable_area_grid": reachable_grid,
         "task_points": case.task_points,
         "trajectory": case.trajectory,
         "all_task_points_fully_dexterous": not short if case.task_points else None,

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from collections.abc import Sequence
+
 import numpy as np
 from numpy.typing import NDArray
 
@@ -11,6 +13,7 @@ from worker.families.planar_serial.kinematics.trajectory import DistanceRange
 from worker.families.planar_serial.specs import PolylineTrajectory, PolynomialTrajectory
 
 __all__ = [
+    "task_distance_range",
     "trajectory_distance_range",
     "trajectory_path",
     "trajectory_samples",
@@ -31,6 +34,16 @@ def trajectory_distance_range(spec: TrajectorySpec) -> DistanceRange:
     return kin_trajectory.polynomial_distance_range(
         np.asarray(spec.polynomial, dtype=float), spec.x_start, spec.x_end
     )
+
+
+def task_distance_range(
+    trajectory: TrajectorySpec | None, task_points: Sequence[Sequence[float]] | None
+) -> DistanceRange:
+    """The task's exact distance range: the trajectory's if there is one (it sets the
+    design, as in the paper's Example 1), else the task points'."""
+    if trajectory is not None:
+        return trajectory_distance_range(trajectory)
+    return kin_trajectory.points_distance_range(np.asarray(task_points, dtype=float))
 
 
 def trajectory_samples(spec: TrajectorySpec) -> FloatArray:

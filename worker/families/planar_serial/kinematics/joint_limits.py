@@ -27,7 +27,7 @@ from worker.families.planar_serial.kinematics.inputs import (
     sample_count,
 )
 
-__all__ = ["limited_orientation_dexterity", "orientation_samples"]
+__all__ = ["feasible_orientations", "limited_orientation_dexterity", "orientation_samples"]
 
 #: Elements (points x orientations) evaluated at once inside a chunk: small enough that
 #: the kernel's ~110 bytes per element stay in cache, which runs 2-3x faster than
@@ -128,6 +128,50 @@ def _feasible(linear: FloatArray, limits: FloatArray) -> BoolArray:
     return plus
 
 
+def _pair_quantities(
+    links: Links, limits: FloatArray, px: FloatArray, py: FloatArray, phi: FloatArray
+) -> FloatArray:
+    """(7, k) quantities of :func:`_linear_weights` at k (point, orientation) pairs.
+
+    The same rows, evaluated directly at each pair instead of as weights on the point
+    features (which pays off only when many points share the orientations).
+    """
+    l1, l2, l3 = links
+    mid = 0.5 * (limits[:, 0] + limits[:, 1])
+    ch1, ch3 = (math.cos(0.5 * float(limits[j, 1] - limits[j, 0])) for j in (0, 2))
+    cm1, sm1, cm3, sm3 = math.cos(mid[0]), math.sin(mid[0]), math.cos(mid[2]), math.sin(mid[2])
+    inv, norm = 0.5 / (l1 * l2), l1 * l1 + l2 * l2
+    cos_phi, sin_phi = np.cos(phi), np.sin(phi)
+    # the wrist relative to the mid frame of joint 1, and p in the frame of e^{i(phi - m3)}
+    wx = px - l3 * cos_phi
+    wy = py - l3 * sin_phi
+    along1, across1 = wx * cm1 + wy * sm1, wy * cm1 - wx * sm1
+    vx, vy = cos_phi * cm3 + sin_phi * sm3, sin_phi * cm3 - cos_phi * sm3
+    along3, across3 = px * vx + py * vy - l3 * cm3, px * vy - py * vx + l3 * sm3
+    return np.stack(
+        [
+            (wx * wx + wy * wy - norm) * inv,
+            l2 * along1 - 2.0 * ch1 * l1 * l2,
+            l1 * along1 - ch1 * norm,
+            l2 * across1,
+            l1 * along3 - 2.0 * ch3 * l1 * l2,
+            l2 * along3 - ch3 * norm,
+            l1 * across3,
+        ]
+    )
+
+
+def feasible_orientations(
+    links: Links, limits: FloatArray, px: FloatArray, py: FloatArray, phi: FloatArray
+) -> BoolArray:
+    """Feasibility of (point, orientation) pairs: px, py, phi (k,) -> (k,) bool.
+
+    links and limits already checked. A pair is feasible when an elbow branch has all
+    three joints within their limits (the test of :func:`limited_orientation_dexterity`).
+    """
+    return _feasible(_pair_quantities(links, limits, px, py, phi), limits)
+
+
 def _refined_measure(
     feasible: BoolArray,
     features: FloatArray,
@@ -144,12 +188,10 @@ def _refined_measure(
     start = samples * step
     lo, hi = start.copy(), start + step
     lo_ok = feasible[samples, columns]
-    pair_features = features[:, columns]
+    px, py = features[0, columns], features[1, columns]
     for _ in range(max(0, math.ceil(math.log2(step / refine_tol)))):
         mid = 0.5 * (lo + hi)
-        weights = _linear_weights(links, limits, np.cos(mid), np.sin(mid))
-        linear = np.einsum("jkc,ck->jk", weights, pair_features)
-        same = _feasible(linear, limits) == lo_ok
+        same = feasible_orientations(links, limits, px, py, mid) == lo_ok
         lo = np.where(same, mid, lo)
         hi = np.where(same, hi, mid)
     edge = 0.5 * (lo + hi)

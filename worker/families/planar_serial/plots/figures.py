@@ -9,7 +9,9 @@ it into PNG/SVG bytes.  Conventions shared by all figures:
 * one colour scale: viridis over d_z in [0, 1] (D = d_z / 3, eqs 2-5; see
   docs/methods/planar-serial.md);
 * dashed circles: the paper's region boundaries d = l3, l1+l2-l3, l1+l2+l3 (its Fig 8);
-  solid red circles: the edges of the exact full-dexterity bands for unlimited joints.
+  solid red circles: the edges of the exact full-dexterity bands for unlimited joints;
+  under joint limits the solid red line is the edge of the map's own d_z = 1 region
+  and the unlimited bands are dotted, a reference.
 
 User-supplied text (titles, labels, units) is shown literally, ``$`` included.
 
@@ -64,6 +66,7 @@ __all__ = [
 _DZ_LABEL = r"orientation dexterity $d_z$  ($D = d_z/3$)"
 _REGIONS_LABEL = r"region boundaries $d = l_3,\ l_1{+}l_2{-}l_3,\ l_1{+}l_2{+}l_3$"
 _BANDS_LABEL = r"full dexterity $d_z = 1$ (unlimited joints)"
+_LIMITED_LABEL = r"edge of full dexterity $d_z = 1$ (joint limits included)"
 _CURVE_COLOR = "#2c5d8a"
 _BAND_FILL = "#fef287"  # viridis' d_z = 1 yellow at 55 % on white, made opaque
 _MAX_SURFACE_NODES = 201
@@ -81,7 +84,8 @@ class CasePanel:
 
     ``x`` (nx,), ``y`` (ny,), ``d_z`` (ny, nx) as in :func:`dexterity_heatmap_figure`;
     ``bands``: the exact full-dexterity radii for unlimited joints; ``region_radii`` =
-    (l3, l1+l2-l3, l1+l2+l3).  Compared by identity, since it holds arrays.
+    (l3, l1+l2-l3, l1+l2+l3), circles about ``base`` (the arm's base in the map's
+    frame).  Compared by identity, since it holds arrays.
     """
 
     label: str
@@ -92,6 +96,7 @@ class CasePanel:
     bands: tuple[tuple[float, float], ...]
     region_radii: tuple[float, float, float]
     joint_limited: bool = False
+    base: tuple[float, float] = (0.0, 0.0)
 
 
 # -- public figures ------------------------------------------------------------------
@@ -111,11 +116,13 @@ def dexterity_heatmap_figure(
     title: str,
     length_unit: str = "units",
     joint_limited: bool = False,
+    limited_method: str = "exact-events",
 ) -> Figure:
     """Heat map of d_z over the workspace, seen from above (the paper's Figs 8, 9, 11).
 
-    ``joint_limited`` says ``d_z`` was sampled under joint limits; the red circles still
-    show the unlimited-joint bands, for comparison.
+    ``joint_limited`` says ``d_z`` is under joint limits, computed by ``limited_method``
+    ('exact-events' or 'orientation-sampling'): the solid red line is then the edge of
+    its d_z = 1 region, the unlimited-joint bands dotted, for comparison.
     """
     where = "dexterity_heatmap_figure"
     dmap = checked_map(x, y, d_z, region_radii, bands, where)
@@ -124,17 +131,19 @@ def dexterity_heatmap_figure(
 
     fig = Figure(figsize=(7.4, 7.6), layout="constrained")
     ax = fig.add_subplot()
-    heatmap_panel(ax, dmap, overlay, length_unit, axes_inches=5.2)
+    heatmap_panel(ax, dmap, overlay, length_unit, axes_inches=5.2, joint_limited=joint_limited)
     subtitle = f"links $l_1, l_2, l_3$ = {l1:g}, {l2:g}, {l3:g} {plain_text(length_unit)}"
     if joint_limited:
-        subtitle += "  ·  $d_z$ sampled under joint limits"
+        how = "sampled" if limited_method == "orientation-sampling" else "exact"
+        subtitle += f"  ·  $d_z$ {how} under joint limits"
     ax.set_title(subtitle, fontsize=10, color="0.25")
     _dz_colourbar(fig.colorbar(mappable(), ax=ax, shrink=0.82, pad=0.02))
     fig.suptitle(plain_text(title), fontsize=13, fontweight="bold")
     radii = ", ".join(f"{r:g}" for r in dmap.region_radii)
     bands_text = r" $\cup$ ".join(f"[{lo:g}, {hi:g}]" for lo, hi in dmap.bands) or "none"
     figure_legend(fig, [dmap], overlay, f"{_REGIONS_LABEL} = {radii}",
-                  f"{_BANDS_LABEL}: {bands_text}", ncols=2)  # fmt: skip
+                  f"{_BANDS_LABEL}: {bands_text}", ncols=2,
+                  limited_label=_LIMITED_LABEL if joint_limited else None)  # fmt: skip
     return fig
 
 
@@ -257,20 +266,23 @@ def synthesis_cases_figure(
     where = "synthesis_cases_figure"
     if not 1 <= len(cases) <= 3:
         raise bad_figure_argument("cases", where, "1 to 3 CasePanel records", f"{len(cases)}")
-    maps = [checked_map(c.x, c.y, c.d_z, c.region_radii, c.bands, where) for c in cases]
+    maps = [checked_map(c.x, c.y, c.d_z, c.region_radii, c.bands, where, c.base) for c in cases]
     overlay = checked_overlay(task_points, task_labels, trajectory, where)
 
     fig = Figure(figsize=(4.7 * len(cases) + 1.3, 6.0), layout="constrained")
     axes = [fig.add_subplot(1, len(cases), i + 1) for i in range(len(cases))]
     for ax, case, dmap in zip(axes, cases, maps, strict=True):
-        heatmap_panel(ax, dmap, overlay, length_unit, axes_inches=4.2)
+        heatmap_panel(ax, dmap, overlay, length_unit, axes_inches=4.2,
+                      joint_limited=case.joint_limited)  # fmt: skip
         detail = "$l_1, l_2, l_3$ = " + ", ".join(f"{v:g}" for v in case.links)
         if case.joint_limited:
             detail += " · joint-limited"
         ax.set_title(f"{case.label}\n{detail}", fontsize=11)
     _dz_colourbar(fig.colorbar(mappable(), ax=axes, shrink=0.8, pad=0.015))
     fig.suptitle(plain_text(title), fontsize=13, fontweight="bold")
-    figure_legend(fig, maps, overlay, _REGIONS_LABEL, _BANDS_LABEL, ncols=4)
+    limited = any(case.joint_limited for case in cases)
+    figure_legend(fig, maps, overlay, _REGIONS_LABEL, _BANDS_LABEL, ncols=3 if limited else 4,
+                  limited_label=_LIMITED_LABEL if limited else None)  # fmt: skip
     return fig
 
 

@@ -39,6 +39,7 @@ class DexterityMap:
     d_z: FloatArray
     region_radii: tuple[float, ...]
     bands: tuple[tuple[float, float], ...]
+    base: tuple[float, float] = (0.0, 0.0)
 
 
 @dataclass(frozen=True)
@@ -52,7 +53,7 @@ class Overlay:
 
 def checked_map(
     x: ArrayLike, y: ArrayLike, d_z: ArrayLike, region_radii: Sequence[float],
-    bands: Sequence[tuple[float, float]], where: str,
+    bands: Sequence[tuple[float, float]], where: str, base: Sequence[float] = (0.0, 0.0),
 ) -> DexterityMap:  # fmt: skip
     xs, ys, dz = (np.asarray(v, dtype=float) for v in (x, y, d_z))
     for name, v in (("x", xs), ("y", ys)):
@@ -75,7 +76,8 @@ def checked_map(
     radii = checked_lengths(
         region_radii, "region_radii", where, 3 if len(region_radii) else 0, signed=True
     )  # l1 + l2 - l3 < 0 just means an empty region 2
-    return DexterityMap(xs, ys, dz, radii, checked_bands(bands, where))
+    bx, by = checked_lengths(base, "base", where, 2, signed=True)
+    return DexterityMap(xs, ys, dz, radii, checked_bands(bands, where), (bx, by))
 
 
 def checked_lengths(

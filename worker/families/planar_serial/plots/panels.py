@@ -36,6 +36,8 @@ _Box = tuple[float, float, float, float]
 _UNREACHABLE = "#d9d9d9"
 _REGION_COLOR, _BAND_COLOR, _PATH_COLOR = "#1a1a1a", "#e8373f", "#111"
 _DASH = (0, (5, 3))
+_BAND: dict[str, Any] = {"color": _BAND_COLOR, "lw": 1.6}
+_REFERENCE_BAND: dict[str, Any] = {"color": _BAND_COLOR, "lw": 1.1, "ls": (0, (1, 2))}
 _HALO = [withStroke(linewidth=3.2, foreground="white")]
 # A box, not a halo, behind labels: text drawn through path effects loses its SVG comment.
 _LABEL_BOX: dict[str, Any] = {"boxstyle": "round,pad=0.12", "fc": "white", "ec": "none",
@@ -50,11 +52,15 @@ _LABEL_PT = 11.0  # font size of the task-point labels
 
 
 def heatmap_panel(
-    ax: Axes, dmap: DexterityMap, overlay: Overlay, length_unit: str, *, axes_inches: float
-) -> None:
+    ax: Axes, dmap: DexterityMap, overlay: Overlay, length_unit: str, *, axes_inches: float,
+    joint_limited: bool = False,
+) -> None:  # fmt: skip
     """d_z cell-centred on the nodes, the region and band circles, base and overlay.
 
     ``axes_inches`` estimates the drawn panel's size, for placing the task labels.
+    ``joint_limited``: the solid red line is the edge of the map's own d_z = 1 region
+    and the unlimited-joint bands are drawn dotted, as a reference.  Circles and the
+    base marker are centred on ``dmap.base``.
     """
     ax.set_facecolor(_UNREACHABLE)
     cmap, norm = mappable().get_cmap(), Normalize(0.0, 1.0)
@@ -65,11 +71,16 @@ def heatmap_panel(
         ax.pcolormesh(dmap.x, dmap.y, dmap.d_z, shading="nearest", cmap=cmap, norm=norm,
                       rasterized=True, zorder=0)  # fmt: skip
     turn = np.linspace(0.0, 2.0 * np.pi, 721)
+    bx, by = dmap.base
     for r in (r for r in dmap.region_radii if r > 0):
-        ax.plot(r * np.cos(turn), r * np.sin(turn), c=_REGION_COLOR, lw=1, ls=_DASH, zorder=2)
+        ax.plot(bx + r * np.cos(turn), by + r * np.sin(turn), c=_REGION_COLOR, lw=1, ls=_DASH,
+                zorder=2)  # fmt: skip
+    band_style = _REFERENCE_BAND if joint_limited else _BAND
     for r in sorted({edge for band in dmap.bands for edge in band if edge > 0}):
-        ax.plot(r * np.cos(turn), r * np.sin(turn), color=_BAND_COLOR, lw=1.6, zorder=3)
-    ax.plot([0.0], [0.0], zorder=6, **_BASE)
+        ax.plot(bx + r * np.cos(turn), by + r * np.sin(turn), zorder=3, **band_style)
+    if joint_limited:
+        _full_dexterity_edge(ax, dmap)
+    ax.plot([bx], [by], zorder=6, **_BASE)
     if overlay.trajectory is not None:
         path = overlay.trajectory
         ax.plot(path[:, 0], path[:, 1], color=_PATH_COLOR, lw=1.8, path_effects=_HALO, zorder=4)
@@ -82,6 +93,14 @@ def heatmap_panel(
     ax.set_xlabel(f"x [{plain_text(length_unit)}]", fontsize=11)
     ax.set_ylabel(f"y [{plain_text(length_unit)}]", fontsize=11)
     ax.tick_params(labelsize=10)
+
+
+def _full_dexterity_edge(ax: Axes, dmap: DexterityMap) -> None:
+    """The edge of the nodes with d_z = 1 (to 1e-12), as a solid red contour."""
+    full = np.where(np.isnan(dmap.d_z), 0.0, (dmap.d_z >= 1.0 - 1e-12).astype(float))
+    if 0.0 < full.mean() < 1.0 and min(full.shape) >= 2:
+        ax.contour(dmap.x, dmap.y, full, levels=[0.5], colors=_BAND_COLOR, linewidths=1.6,
+                   zorder=3)  # fmt: skip
 
 
 def _task_points(ax: Axes, overlay: Overlay, *, pt_per_unit: float) -> None:
@@ -131,14 +150,22 @@ def _label_offsets(
 
 def figure_legend(
     fig: Figure, maps: Sequence[DexterityMap], overlay: Overlay, regions_label: str,
-    bands_label: str, *, ncols: int,
+    bands_label: str, *, ncols: int, limited_label: str | None = None,
 ) -> None:  # fmt: skip
-    """One legend under the axes, so it never covers a map."""
+    """One legend under the axes, so it never covers a map.
+
+    ``limited_label``: a panel is joint-limited; the solid red line is its own d_z = 1
+    edge (so labelled) and ``bands_label`` goes with the dotted reference circles.
+    """
     handles: list[Artist] = [
         Line2D([], [], color=_REGION_COLOR, lw=1.0, ls=_DASH, label=regions_label),
-        Line2D([], [], color=_BAND_COLOR, lw=1.6, label=bands_label),
-        Line2D([], [], ls="none", label="base", **_BASE),
     ]
+    if limited_label is not None:
+        handles.append(Line2D([], [], **_BAND, label=limited_label))
+        handles.append(Line2D([], [], **_REFERENCE_BAND, label=bands_label))
+    else:
+        handles.append(Line2D([], [], **_BAND, label=bands_label))
+    handles.append(Line2D([], [], ls="none", label="base", **_BASE))
     if overlay.points.size:
         handles.append(Line2D([], [], ls="none", label="task points", **_POINT))
     if overlay.trajectory is not None:

@@ -145,8 +145,19 @@ class TestWorkedExamples:
         assert areas["reachable_grid"] == pytest.approx(
             summary["reachable_points"] * areas["cell_area"]
         )
-        assert areas["reachable"] == pytest.approx(math.pi * 37**2)
-        assert areas["fully_dexterous"] == pytest.approx(math.pi * 409)
+        if example == "ideal":
+            assert areas["reachable"] == pytest.approx(math.pi * 37**2)
+            assert areas["fully_dexterous"] == pytest.approx(math.pi * 409)
+            assert "unlimited_reference" not in areas
+            return
+        # under joint limits: the limited arm's areas, from the map; unlimited as reference
+        assert areas["reachable"] == areas["reachable_grid"]
+        assert areas["fully_dexterous"] == areas["fully_dexterous_grid"]
+        assert areas["fully_dexterous"] < 0.5 * math.pi * 409
+        reference = areas["unlimited_reference"]
+        assert reference["reachable"] == pytest.approx(math.pi * 37**2)
+        assert reference["fully_dexterous"] == pytest.approx(math.pi * 409)
+        assert reference["full_dexterity_bands"] == [[0.0, 7.0], [9.0, 21.0]]
 
 
 # -- Case 1: revolute joints, exact ----------------------------------------------------
@@ -234,18 +245,56 @@ def test_ideal_notes(ideal: tuple[JobOutcome, RecordingContext]) -> None:
     assert "0.960107" in notes[0]
 
 
-# -- Case 3: joint limits, sampled ----------------------------------------------------
+# -- Case 3: joint limits, exact events (and sampled, the reference) -------------------
+
+
+@pytest.fixture(scope="module")
+def sampled() -> tuple[JobOutcome, RecordingContext]:
+    return run_example(3)
 
 
 def test_limited_discretisation(limited: tuple[JobOutcome, RecordingContext]) -> None:
     result = limited[0].result
-    assert result["method"] == "orientation-sampling"
+    assert result["method"] == "exact-events"
     assert result["joint_limits_deg"] == [list(p) for p in PAPER_JOINT_LIMITS_DEG]
+    discretisation = result["discretisation"]
+    assert discretisation["orientation_step_deg"] is None
+    assert discretisation["orientation_samples"] is None
+    assert discretisation["unused_inputs"] == ["orientation_step_deg"]
+    # annulus edges, th2, th1 and th3 limits: 8 conditions, two roots each
+    assert discretisation["events_per_point"] == 16
+    assert discretisation["elbow_branches"] == 2
+    assert discretisation["task_points"] == "exact-events"
+    assert discretisation["radial_section"]["method"] == "exact-events"
+
+
+def test_sampled_discretisation(sampled: tuple[JobOutcome, RecordingContext]) -> None:
+    result = sampled[0].result
+    assert result["method"] == "orientation-sampling"
     discretisation = result["discretisation"]
     assert discretisation["orientation_step_deg"] == pytest.approx(1.0)
     assert discretisation["orientation_samples"] == 360
     assert discretisation["elbow_branches"] == 2
     assert discretisation["task_points"] == "bisection-refined (tol 1e-10 rad)"
+    assert "unused_inputs" not in discretisation
+
+
+def test_exact_and_sampled_maps_agree_to_the_sampling_error(
+    limited: tuple[JobOutcome, RecordingContext], sampled: tuple[JobOutcome, RecordingContext]
+) -> None:
+    maps = []
+    for outcome, _ in (limited, sampled):
+        with np.load(io.BytesIO(artifact(outcome, "dexterity_map.npz"))) as npz:
+            maps.append(npz["d_z"])
+    exact, coarse = maps
+    # each feasible arc's two ends move by less than one 1-degree step in total
+    assert np.abs(exact - coarse).max() <= 2 / 360
+    assert 0 < np.abs(exact - coarse).mean() < 0.5 / 360
+    # the exact values are not multiples of 1/360; the sampled ones are
+    assert np.allclose(coarse * 360, np.round(coarse * 360))
+    assert not np.allclose(exact * 360, np.round(exact * 360))
+    for a, b in zip(by_label(limited[0]).values(), by_label(sampled[0]).values(), strict=True):
+        assert a["d_z"] == pytest.approx(b["d_z"], abs=1e-9)
 
 
 def test_limited_task_points_match_methods(limited: tuple[JobOutcome, RecordingContext]) -> None:
@@ -289,12 +338,24 @@ def test_exact_map_reports_progress_by_row_blocks(ctx: RecordingContext) -> None
 
 
 @pytest.mark.usefixtures("fast_figures")
-def test_limited_map_reports_progress_by_chunk(ctx: RecordingContext) -> None:
+def test_sampled_map_reports_progress_by_chunk(ctx: RecordingContext) -> None:
     # 2**22 elements per chunk / 3600 samples = 1165 points: 2 chunks for 41 x 41 nodes.
     run(ctx, grid={"points_per_axis": 41}, joint_limits_deg=[[-90, 90]] * 3,
-        orientation_step_deg=0.1)  # fmt: skip
+        orientation_step_deg=0.1, method="orientation-sampling")  # fmt: skip
     grid_reports = [p for p, message in ctx.reports if message == "dexterity map"]
     assert len(grid_reports) == 2
+
+
+@pytest.mark.usefixtures("fast_figures")
+def test_exact_map_under_limits_reports_progress_by_chunk(ctx: RecordingContext) -> None:
+    # 2048 points per chunk: 3 chunks for 65 x 65 = 4225 nodes
+    outcome = run(ctx, grid={"points_per_axis": 65}, joint_limits_deg=[[-90, 90]] * 3,
+                  orientation_step_deg=0.1)  # fmt: skip
+    grid_reports = [p for p, message in ctx.reports if message == "dexterity map"]
+    assert len(grid_reports) == 3
+    assert grid_reports == sorted(grid_reports) and grid_reports[-1] == pytest.approx(80.0)
+    # the step was given but the exact method does not use it: a note says so
+    assert "orientation_step_deg is not used by this method" in "\n".join(outcome.notes)
 
 
 @pytest.mark.usefixtures("fast_figures")

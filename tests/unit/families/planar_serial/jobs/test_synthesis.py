@@ -26,7 +26,7 @@ RESULT_KEYS = {
 CASE_KEYS = {
     "case", "name", "links", "joint_limits_deg", "method", "full_dexterity_bands",
     "fully_dexterous_area", "reachable_area", "fully_dexterous_fraction",
-    "fully_dexterous_area_grid", "reachable_area_grid", "task_points", "trajectory",
+    "areas_method", "fully_dexterous_area_grid", "reachable_area_grid", "task_points", "trajectory",
     "all_task_points_fully_dexterous",
 }  # fmt: skip
 GRASHOF_KEYS = {
@@ -102,8 +102,9 @@ class TestWorkedExamples:
         assert result["task_points"] == case(outcome, 1)["task_points"]
         discretisation = result["discretisation"]
         assert discretisation["grid"]["points_per_axis"] == 201
-        assert discretisation["orientation_samples"] == 360
-        assert discretisation["task_points"] == "bisection-refined (tol 1e-10 rad)"
+        assert discretisation["orientation_samples"] is None
+        assert discretisation["unused_inputs"] == ["orientation_step_deg"]
+        assert discretisation["task_points"] == "exact-events"
 
     def test_artifacts(self, example: str, request: pytest.FixtureRequest) -> None:
         outcome, _ = request.getfixturevalue(example)
@@ -132,13 +133,17 @@ class TestWorkedExamples:
             ideal["fully_dexterous_area"], rel=0.02
         )
 
-    def test_case_3_is_sampled(self, example: str, request: pytest.FixtureRequest) -> None:
+    def test_case_3_is_exact(self, example: str, request: pytest.FixtureRequest) -> None:
         outcome, _ = request.getfixturevalue(example)
         limited = case(outcome, 3)
-        assert limited["method"] == "orientation-sampling"
+        assert limited["method"] == "exact-events"
         assert limited["joint_limits_deg"] == [[-150, 150], [-150, 150], [-175, 175]]
         assert limited["full_dexterity_bands"] is None
-        assert limited["fully_dexterous_area"] is None
+        # the joint-limited arm's own areas, counted on its map
+        assert limited["fully_dexterous_area"] == limited["fully_dexterous_area_grid"]
+        assert limited["reachable_area"] == limited["reachable_area_grid"]
+        assert limited["areas_method"] == "grid count of exact-events d_z (joint-limited arm)"
+        assert case(outcome, 1)["areas_method"] == "exact-closed-form"
         assert limited["all_task_points_fully_dexterous"] is False
         assert limited["fully_dexterous_area_grid"] < case(outcome, 1)["fully_dexterous_area_grid"]
 

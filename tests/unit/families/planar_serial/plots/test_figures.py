@@ -189,8 +189,19 @@ def test_heatmap_task_labels_overlap_neither_each_other_nor_points() -> None:
 
 
 def test_heatmap_notes_joint_limits() -> None:
-    assert "sampled under joint limits" in heatmap(joint_limited=True).axes[0].get_title()
+    assert "exact under joint limits" in heatmap(joint_limited=True).axes[0].get_title()
+    sampled = heatmap(joint_limited=True, limited_method="orientation-sampling")
+    assert "sampled under joint limits" in sampled.axes[0].get_title()
     assert "joint limits" not in heatmap().axes[0].get_title()
+
+
+def test_heatmap_under_joint_limits_outlines_its_own_full_dexterity() -> None:
+    legend = heatmap(joint_limited=True).legends[0]
+    texts = [t.get_text() for t in legend.get_texts()]
+    assert any("joint limits included" in t for t in texts)
+    assert any("unlimited joints" in t for t in texts)
+    plain = [t.get_text() for t in heatmap().legends[0].get_texts()]
+    assert not any("joint limits included" in t for t in plain)
 
 
 def test_default_task_labels_are_letters() -> None:
