@@ -126,6 +126,7 @@ async def test_cost_limit_refuses_before_queuing(asgi_client: httpx.AsyncClient)
         "joint_limits_deg": [[-150, 150], [-150, 150], [-175, 175]],
         "grid": {"points_per_axis": 2001},
         "orientation_step_deg": 0.1,
+        "method": "orientation-sampling",
     }
     r = await asgi_client.post(
         "/v1/processes/planar3r-dexterity-map/execution", json={"inputs": inputs}
@@ -177,6 +178,7 @@ async def test_results_not_ready_while_pending(asgi_client: httpx.AsyncClient) -
         "grid": {"points_per_axis": 101},
         "joint_limits_deg": [[-150, 150], [-150, 150], [-175, 175]],
         "orientation_step_deg": 2,
+        "method": "orientation-sampling",
     }
     first = (await asgi_client.post(url, json={"inputs": slow})).json()["jobID"]
     second = (await asgi_client.post(url, json={"inputs": SMALL_MAP})).json()["jobID"]

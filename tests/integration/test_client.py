@@ -38,6 +38,7 @@ LONG_MAP = {
     "joint_limits_deg": [[-150, 150], [-150, 150], [-175, 175]],
     "grid": {"points_per_axis": 801},
     "orientation_step_deg": 0.5,
+    "method": "orientation-sampling",
 }
 #: One quick worked example per family (the paper's number, in the process's order).
 FAMILY_EXAMPLES = [

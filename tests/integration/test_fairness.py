@@ -37,6 +37,7 @@ def heavy(tag: int) -> dict[str, object]:
         "joint_limits_deg": [[-150, 150], [-150, 150], [-175, 175]],
         "grid": {"points_per_axis": 401},
         "orientation_step_deg": 0.5,
+        "method": "orientation-sampling",
     }
 
 

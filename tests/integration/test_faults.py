@@ -73,6 +73,7 @@ def small_map(tag: int) -> dict[str, Any]:
         "joint_limits_deg": PAPER_LIMITS,
         "grid": {"points_per_axis": 261},
         "orientation_step_deg": 1,
+        "method": "orientation-sampling",
         "plots": False,
     }
 

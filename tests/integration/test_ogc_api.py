@@ -176,7 +176,7 @@ async def test_landing_conformance_and_processes(pool: httpx.AsyncClient) -> Non
     listing = (await pool.get("/ogc/processes")).json()
     OgcProcessList.model_validate(listing)
     rels_of_list = [link["rel"] for link in listing["links"]]
-    assert len(listing["processes"]) == 9 and rels_of_list == ["self", "alternate"]
+    assert len(listing["processes"]) == 10 and rels_of_list == ["self", "alternate"]
     page = (await pool.get("/ogc/processes", params={"limit": 4, "offset": 4})).json()
     assert [p["id"] for p in page["processes"]] == [p["id"] for p in listing["processes"][4:8]]
     (after,) = [link for link in page["links"] if link["rel"] == "next"]
@@ -449,7 +449,15 @@ async def test_job_list_parameters(pool: httpx.AsyncClient) -> None:
     chains_id = chains.headers["location"].rsplit("/", 1)[-1]
     slow = await pool.post(
         "/ogc/processes/planar3r-dexterity-map/execution",
-        json={"inputs": {"links": [15, 14, 8], "grid": {"points_per_axis": 401}}},
+        json={
+            "inputs": {
+                "links": [15, 14, 8],
+                "grid": {"points_per_axis": 401},
+                "joint_limits_deg": [[-150, 150], [-150, 150], [-175, 175]],
+                "method": "orientation-sampling",
+                "orientation_step_deg": 0.5,
+            }
+        },
         headers={"Prefer": "respond-async"},
     )
     slow_url = slow.headers["location"]

@@ -27,7 +27,8 @@ MAP_URL = f"/v1/processes/{PROCESS}/execution"
 #: and one that would take several times the limit.
 QUICK = {"links": [3, 2, 1], "grid": {"points_per_axis": 11}}
 SLOW = {"links": [15, 14, 8], "joint_limits_deg": [[-150, 150], [-150, 150], [-175, 175]],
-        "grid": {"points_per_axis": 801}, "orientation_step_deg": 0.5}  # fmt: skip
+        "grid": {"points_per_axis": 801}, "orientation_step_deg": 0.5,
+        "method": "orientation-sampling"}  # fmt: skip
 TIME_LIMIT_S = "6"
 LINE_FIELDS = {"time", "level", "logger", "message", "process"}
 

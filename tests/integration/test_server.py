@@ -41,6 +41,7 @@ def long_job(tag: int = 0) -> dict[str, Any]:
         "joint_limits_deg": PAPER_LIMITS,
         "grid": {"points_per_axis": 401},
         "orientation_step_deg": 0.5,
+        "method": "orientation-sampling",
     }
 
 
@@ -164,6 +165,7 @@ def test_job_whose_worker_keeps_dying_fails_after_bounded_attempts(
         "joint_limits_deg": PAPER_LIMITS,
         "grid": {"points_per_axis": 301},
         "orientation_step_deg": 1,
+        "method": "orientation-sampling",
     }
     job_id = client.post(MAP_URL, json={"inputs": slow}).json()["jobID"]
     for attempt in (1, 2):
@@ -222,6 +224,7 @@ def test_two_workers_share_a_batch(backend: str, tmp_path: Path) -> None:
             "joint_limits_deg": PAPER_LIMITS,
             "grid": {"points_per_axis": 41},
             "orientation_step_deg": 2,
+            "method": "orientation-sampling",
         }
         ids = [
             client.post(
