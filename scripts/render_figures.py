@@ -47,6 +47,7 @@ def main() -> None:
             module = importlib.import_module(f"{jobs.__name__}.{info.name}")
             if hasattr(module, "figure_artifacts"):
                 module.figure_artifacts = capture  # type: ignore[attr-defined]
+    importlib.import_module("worker.studies.outcome").figure_artifacts = capture  # type: ignore[attr-defined]
     OUT.mkdir(parents=True, exist_ok=True)
     lines = [
         "# Figures",

@@ -69,6 +69,11 @@ def status_document(job: JobRecord, *, worker: bool = True, owner: bool = False)
     doc["links"] = links
     if job.status is JobStatus.FAILED and job.error is not None:
         doc["error"] = {k: job.error[k] for k in ("type", "title", "detail") if k in job.error}
+    if job.parent_id is not None:
+        doc["parentID"] = job.parent_id
+    if job.children_total is not None:
+        doc["chunks"] = {"total": job.children_total, "ended": job.children_done,
+                         "failed": job.children_failed}  # fmt: skip
     return doc
 
 

@@ -45,6 +45,14 @@ class JobError(_Document):
     detail: str | None = None
 
 
+class Chunks(_Document):
+    """A design study's chunk jobs (list them with ``GET /v1/jobs?parent=<jobID>``)."""
+
+    total: int
+    ended: int
+    failed: int
+
+
 class StatusDocument(_Document):
     """``GET /v1/jobs/{jobID}``: where a job is."""
 
@@ -78,6 +86,12 @@ class StatusDocument(_Document):
     )
     links: list[Link]
     error: JobError | None = None
+    parentID: str | None = Field(
+        None, description="The study this job is a chunk of (design-study); absent otherwise."
+    )
+    chunks: Chunks | None = Field(
+        None, description="A study's chunk jobs: how many, how many ended, how many failed."
+    )
 
 
 class JobList(_Document):

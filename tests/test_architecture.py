@@ -2,6 +2,8 @@
 
 ``service`` (HTTP) -> the job runtime (``worker/*.py``, ``store/``, ``dispatch/``) ->
 ``worker/families/<family>/`` (the science) -> ``worker/common/`` (what families share).
+``worker/studies/`` (``design-study``) is a process built on the others: like a family
+it may use ``worker.common``, and it reaches the families only through the registry.
 The runtime reaches a family only through the registry (:func:`default_registry`); a
 family's ``kinematics/`` is pure numpy/scipy; families never import each other; figures
 never use pyplot; modules stay under 400 lines and a folder with three modules named
@@ -22,11 +24,11 @@ ROOT = Path(__file__).resolve().parents[1]
 FAMILIES = sorted(p.parent.name for p in (ROOT / "worker/families").glob("*/__init__.py"))
 #: The pure modules of ``worker.common`` (a family's kinematics may import these only).
 PURE_COMMON = {"worker.common.arrays", "worker.common.grashof", "worker.common.parameter_errors"}
-#: The job runtime: every ``worker`` module outside ``families/`` and ``common/``.
+#: The job runtime: every ``worker`` module outside ``families/``, ``common/``, ``studies/``.
 RUNTIME = sorted(
     p
     for p in (ROOT / "worker").rglob("*.py")
-    if not {"families", "common"} & set(p.relative_to(ROOT / "worker").parts)
+    if not {"families", "common", "studies"} & set(p.relative_to(ROOT / "worker").parts)
 )
 MAX_LINES = 400
 
@@ -98,6 +100,12 @@ def test_the_runtime_knows_no_family(path: Path) -> None:
     offenders = {m for m in imported_modules(path) if under(m, "worker.families", "worker.common")}
     if path == ROOT / "worker/processes.py":
         offenders -= {"worker.families", *(f"worker.families.{f}" for f in FAMILIES)}
+    assert not offenders, f"{path} imports family code: {offenders}"
+
+
+@pytest.mark.parametrize("path", python_files("worker/studies"), ids=rel)
+def test_studies_reach_families_only_through_the_registry(path: Path) -> None:
+    offenders = {m for m in imported_modules(path) if under(m, "worker.families")}
     assert not offenders, f"{path} imports family code: {offenders}"
 
 
@@ -180,7 +188,7 @@ def test_plots_never_use_pyplot(path: Path) -> None:
 
 @pytest.mark.parametrize("path", python_files("worker/common"), ids=rel)
 def test_common_imports_no_family(path: Path) -> None:
-    offenders = {m for m in imported_modules(path) if under(m, "worker.families")}
+    offenders = {m for m in imported_modules(path) if under(m, "worker.families", "worker.studies")}
     assert not offenders, f"{path} imports a family: {offenders}"
 
 

@@ -16,6 +16,7 @@ __all__ = [
     "TERMINAL_STATUSES",
     "Artifact",
     "ArtifactInfo",
+    "ChildEnd",
     "JobContext",
     "JobOutcome",
     "JobRecord",
@@ -84,6 +85,15 @@ class JobOutcome:
         return (*self.notes, *self.errata)
 
 
+@dataclass(frozen=True)
+class ChildEnd:
+    """How a child job of a job that fans out ended, as its parent assembles it."""
+
+    job_id: str
+    status: JobStatus
+    error: Mapping[str, Any] | None
+
+
 class JobContext(Protocol):
     """What a running job may tell the outside world."""
 
@@ -115,3 +125,12 @@ class JobRecord:
     owner: str = ""
     #: When the finished job and its files are deleted (None while it is unfinished).
     expires: datetime | None = None
+    #: The job this one is a part of (a chunk of a study), or None.
+    parent_id: str | None = None
+    #: A job that fans out: None before it splits, 'waiting' while its children run,
+    #: 'assembling' once they all ended (worker.store.fan_out).
+    phase: str | None = None
+    #: Its children: how many, how many ended, how many of those failed.
+    children_total: int | None = None
+    children_done: int = 0
+    children_failed: int = 0

@@ -8,16 +8,18 @@ description of its outputs, and its cost limit (checked before anything is queue
 from __future__ import annotations
 
 import copy
-from collections.abc import Callable, Mapping
+from collections.abc import Callable, Iterable, Mapping, Sequence
 from dataclasses import dataclass
 from functools import cached_property
 from typing import Any
 
 from pydantic import BaseModel
 
-from worker.contract import JobContext, JobOutcome
+from worker.contract import ChildEnd, JobContext, JobOutcome
 
 __all__ = [
+    "ChildResults",
+    "FanOutSteps",
     "ProcessDefinition",
     "ProcessExample",
     "ProcessFile",
@@ -25,6 +27,7 @@ __all__ = [
     "data_files",
     "default_registry",
     "figure_files",
+    "worker_registry",
 ]
 
 #: File extension -> media type of the files jobs write.
@@ -72,6 +75,24 @@ def data_files(stem: str, title: str) -> tuple[ProcessFile, ProcessFile]:
     )
 
 
+#: A fan-out parent's children as it assembles them: how each ended, and its result.
+ChildResults = Iterable[tuple[ChildEnd, Mapping[str, Any] | None]]
+
+
+@dataclass(frozen=True)
+class FanOutSteps:
+    """A process that fans out over the workers (``design-study``): its first attempt
+    ``split``s the validated inputs into the inputs of ``child_process`` jobs, which run
+    like any job; once they all ended, ``assemble`` builds the outcome from them in
+    order (worker.store.fan_out).  ``allow_partial``: whether a failed child is
+    reported as missing instead of failing the parent."""
+
+    child_process: str
+    split: Callable[[Any], Sequence[Mapping[str, Any]]]
+    assemble: Callable[[Any, ChildResults, JobContext], JobOutcome]
+    allow_partial: Callable[[Any], bool] = lambda inputs: False
+
+
 @dataclass(frozen=True)
 class ProcessDefinition:
     """One job kind.
@@ -101,6 +122,12 @@ class ProcessDefinition:
     #: Every file a job of this process can write (a job need not write all of them:
     #: ``"plots": false`` writes no figures); checked against real runs by the tests.
     files: tuple[ProcessFile, ...] = ()
+    #: A process that fans out its work as child jobs (``run`` then does the same work
+    #: in one process, for tests and small requests); None for an ordinary process.
+    fan_out: FanOutSteps | None = None
+    #: Checks beyond the input model, made at submission (before anything is queued):
+    #: field errors ``{"field", "message", "type"}`` for a 422; None: none.
+    precheck: Callable[[Any], list[dict[str, Any]]] | None = None
 
     @cached_property
     def inputs_schema(self) -> dict[str, Any]:
@@ -172,6 +199,15 @@ def default_registry() -> ProcessRegistry:
     checks that every folder is listed).
     """
     from worker.families import chains, planar_parallel, planar_serial, spherical_parallel
+    from worker.studies.process import STUDY
 
     families = (planar_serial, planar_parallel, chains, spherical_parallel)
-    return ProcessRegistry(tuple(d for family in families for d in family.PROCESSES))
+    return ProcessRegistry((*(d for family in families for d in family.PROCESSES), STUDY))
+
+
+def worker_registry() -> ProcessRegistry:
+    """What the workers run: every public process and the jobs processes make for
+    themselves (a study's chunks), which the service neither lists nor accepts."""
+    from worker.studies.chunk import CHUNK
+
+    return ProcessRegistry((*default_registry(), CHUNK))

@@ -19,6 +19,7 @@ import socket
 import sys
 import threading
 import time
+from collections.abc import Callable, Sequence
 from typing import Any
 
 from pydantic import ValidationError
@@ -26,12 +27,12 @@ from pydantic import ValidationError
 from worker.contract import JobStatus
 from worker.errors import StoreUnavailable
 from worker.logs import configure_logging, log_context
-from worker.processes import ProcessRegistry, default_registry
+from worker.processes import ProcessRegistry, worker_registry
 from worker.progress import StoreProgress
 from worker.result_commit import commit_outcome, error_document, record_failure
 from worker.settings import WorkerSettings
 from worker.store import open_store
-from worker.store.base import Claim, JobStore
+from worker.store.base import Claim, JobStore, NewJob
 
 __all__ = ["AttemptGuard", "WorkerLoop", "lower_priority", "worker_id_for", "worker_main"]
 
@@ -127,11 +128,15 @@ class WorkerLoop:
         store: JobStore,
         registry: ProcessRegistry,
         prefer_cheap: bool = False,
+        on_queued: Callable[[Sequence[str]], None] | None = None,
     ) -> None:
         self.settings = settings
         self.store = store
         self.registry = registry
         self.prefer_cheap = prefer_cheap
+        #: Told the IDs of jobs this loop queued (a study's chunks, a study queued again
+        #: to assemble): a broker deployment sends them; the local pool polls instead.
+        self.on_queued = on_queued
         self.worker_id = worker_id_for(os.getpid())
         self._stop = threading.Event()
 
@@ -203,12 +208,69 @@ class WorkerLoop:
         guard = AttemptGuard(self.store, claim, self.settings, self.worker_id, deadline)
         guard.start()
         try:  # the guard renews the lease until the outcome is committed
+            definition = self.registry.get(job.process_id)
+            if definition is not None and definition.fan_out is not None and job.phase is None:
+                self._split(claim, definition, guard)
+                return
             outcome = self._run_job(claim)
             if outcome is not None:
                 result, artifacts = outcome
                 commit_outcome(self.store, claim, result, artifacts, self._give_up_after_s)
         finally:
             guard.stop()
+        if job.parent_id is not None:
+            self._notify_parent(job.parent_id)
+
+    def _split(self, claim: Claim, definition: Any, guard: AttemptGuard) -> None:
+        """A fan-out job's first attempt: its children queued, itself parked (it holds
+        no worker while they run; worker.store.fan_out)."""
+        job = claim.job
+        steps = definition.fan_out
+        try:
+            inputs = definition.inputs_model.model_validate(job.inputs)
+            child = self.registry.get(steps.child_process)
+            if child is None:
+                raise RuntimeError(f"this worker does not know the process {steps.child_process!r}")
+            children = [
+                NewJob(
+                    process_id=child.id,
+                    inputs=child_inputs,
+                    time_limit_s=self.settings.time_limit_for(child.time_limit_s),
+                    max_attempts=job.max_attempts,
+                    owner=job.owner,
+                    parent_id=job.job_id,
+                )
+                for child_inputs in steps.split(inputs)
+            ]
+            allow_partial = bool(steps.allow_partial(inputs))
+        except (Exception, ValidationError) as exc:
+            log.exception("job %s could not be split", job.job_id)
+            record_failure(self.store, claim, error_document(exc), self._give_up_after_s)
+            return
+        guard.stop()  # the split drops the lease: no heartbeat may follow it
+        guard.join()
+        ids = self.store.split(job.job_id, claim.lease_token, children, allow_partial=allow_partial)
+        if ids is None:
+            log.warning("job %s was lost while it split", job.job_id)
+            return
+        log.info("job %s split into %d jobs", job.job_id, len(ids))
+        if self.on_queued is not None:
+            self.on_queued(ids or [job.job_id])
+
+    def _notify_parent(self, parent_id: str) -> None:
+        """Send the parent on if this job's end queued it to assemble."""
+        if self.on_queued is None:
+            return
+        try:
+            parent = self.store.get_job(parent_id)
+        except StoreUnavailable:  # the sweeper re-sends undispatched jobs
+            return
+        if (
+            parent is not None
+            and parent.status is JobStatus.ACCEPTED
+            and parent.phase == "assembling"
+        ):
+            self.on_queued([parent_id])
 
     def _run_job(self, claim: Claim) -> tuple[dict[str, Any], Any] | None:
         job = claim.job
@@ -225,7 +287,11 @@ class WorkerLoop:
             inputs = definition.inputs_model.model_validate(job.inputs)
             context = StoreProgress(self.store, job.job_id, claim.lease_token)
             context.report_progress(0.0, "started")
-            outcome = definition.run(inputs, context)
+            if definition.fan_out is not None and job.phase == "assembling":
+                children = self.store.child_results(job.job_id)
+                outcome = definition.fan_out.assemble(inputs, children, context)
+            else:
+                outcome = definition.run(inputs, context)
         except (Exception, ValidationError) as exc:
             log.exception("job %s raised", job.job_id)
             record_failure(self.store, claim, error_document(exc), self._give_up_after_s)
@@ -303,7 +369,7 @@ def worker_main(
     except Exception as exc:  # the supervisor backs off and says why
         log.error("worker process %d cannot open the job store: %s", os.getpid(), exc)
         sys.exit(EXIT_STARTUP)
-    loop = WorkerLoop(settings, store, default_registry(), prefer_cheap=prefer_cheap)
+    loop = WorkerLoop(settings, store, worker_registry(), prefer_cheap=prefer_cheap)
     signal.signal(signal.SIGTERM, lambda *_: loop.request_stop())
     signal.signal(signal.SIGINT, signal.SIG_IGN)  # the supervisor decides when we stop
     loop.run(parent_pid=parent_pid)

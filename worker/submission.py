@@ -112,6 +112,10 @@ def submit(
             cost_limit=definition.cost_limit,
             cost_unit=definition.cost_unit,
         )
+    if definition.precheck is not None:
+        problems = definition.precheck(inputs)
+        if problems:
+            raise InvalidInputs(problems)
     stored_inputs = inputs.model_dump(mode="json")
     new = NewJob(
         process_id=process_id,

@@ -29,7 +29,7 @@ from worker.errors import (
     StorageError,
 )
 from worker.processes import ProcessRegistry
-from worker.store.base import JobStore
+from worker.store.base import JobFilter, JobStore
 
 __all__ = ["router"]
 
@@ -58,13 +58,19 @@ def list_jobs(
         str | None,
         Query(max_length=64, description="Admin keys only: this key's jobs ('' = anonymous)."),
     ] = None,
+    parent: Annotated[
+        str | None,
+        Query(max_length=64, description="A design study's jobID: list its chunk jobs."),
+    ] = None,
     f: FormatQuery = None,
 ) -> dict[str, Any] | HTMLResponse:
     scope = identity.owner_filter(owner)
+    where = None if parent is None else JobFilter(parent_id=parent)
     try:
         page = store.list_jobs(
-            limit=limit, cursor=cursor, status=status, process_id=process_id, owner=scope
-        )
+            limit=limit, cursor=cursor, status=status, process_id=process_id, owner=scope,
+            where=where,
+        )  # fmt: skip
     except ValueError as exc:
         raise InvalidInputs(
             [{"field": "cursor", "message": str(exc), "type": "value_error"}],
@@ -84,6 +90,8 @@ def list_jobs(
             query += f"&processID={process_id}"
         if owner is not None:
             query += f"&{urlencode({'owner': owner})}"
+        if parent is not None:
+            query += f"&{urlencode({'parent': parent})}"
         links.append({"href": f"/v1/jobs?{query}", "rel": "next", "type": "application/json"})
     return {
         "jobs": [_status(j, identity) for j in page.jobs],

@@ -49,6 +49,14 @@ class ArtifactIndex:
         def _one(self, conn: Conn, query: str, params: Sequence[Any] = ()) -> Any: ...
         def _all(self, conn: Conn, query: str, params: Sequence[Any] = ()) -> list[Any]: ...
         def _tally_finish(self, conn: Conn, row: Any, status: JobStatus, now: float) -> None: ...
+        def _child_ended(
+            self,
+            conn: Conn,
+            child_id: str,
+            status: JobStatus,
+            error: Mapping[str, Any] | None,
+            now: float,
+        ) -> str | None: ...
 
     # -- where the bytes live (dialect hooks) -------------------------------------------
     def _put_artifact_data(
@@ -157,6 +165,7 @@ class ArtifactIndex:
                     (payload, _SUCCESSFUL, now, now, now, job_id),
                 )
                 self._tally_finish(conn, row, JobStatus.SUCCESSFUL, now)
+                self._child_ended(conn, job_id, JobStatus.SUCCESSFUL, None, now)
         if not owner:
             self._discard_attempt(job_id, attempt)
             return False

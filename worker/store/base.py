@@ -12,7 +12,7 @@ from dataclasses import dataclass
 from datetime import datetime
 from typing import Any, Protocol
 
-from worker.contract import Artifact, ArtifactInfo, JobRecord, JobStatus
+from worker.contract import Artifact, ArtifactInfo, ChildEnd, JobRecord, JobStatus
 
 __all__ = [
     "ApiKey",
@@ -127,6 +127,8 @@ class JobFilter:
     created_to: datetime | None = None
     min_duration_s: float | None = None
     max_duration_s: float | None = None
+    #: The children of this job (a study's chunks); None: jobs that are nobody's child.
+    parent_id: str | None = None
 
 
 @dataclass(frozen=True)
@@ -278,6 +280,24 @@ class JobStore(Protocol):
     def reap_expired(self) -> list[str]:
         """Requeue (or fail, when out of attempts) running jobs whose lease expired;
         returns the requeued job IDs."""
+
+    def split(
+        self,
+        job_id: str,
+        lease_token: str,
+        children: Sequence[NewJob],
+        *,
+        allow_partial: bool = False,
+    ) -> list[str] | None:
+        """Queue ``children`` of the running job (its owner, retention, ``parent_id``)
+        and park it without a lease until they end; their IDs, or None if the attempt
+        lost the job (:mod:`worker.store.fan_out`)."""
+
+    def children(self, job_id: str) -> list[ChildEnd]:
+        """The job's children in the order they were made."""
+
+    def child_results(self, job_id: str) -> Iterator[tuple[ChildEnd, Mapping[str, Any] | None]]:
+        """Each child with its result document (None unless successful), in order."""
 
     def mark_dispatched(self, job_id: str) -> None:
         """Record that the job's ID was handed to the broker now."""

@@ -41,6 +41,14 @@ class Leases:
         def _discard_artifact_data(self, job_id: str, keep_attempt: int | None = None) -> None: ...
         def _tally_claim(self, conn: Conn, job_id: str, now: float) -> None: ...
         def _tally_finish(self, conn: Conn, row: Row, status: JobStatus, now: float) -> None: ...
+        def _child_ended(
+            self,
+            conn: Conn,
+            child_id: str,
+            status: JobStatus,
+            error: Mapping[str, Any] | None,
+            now: float,
+        ) -> str | None: ...
 
     # -- leases -----------------------------------------------------------------------
     def _reap(self, conn: Conn, row: Row, now: float) -> JobStatus:
@@ -69,6 +77,7 @@ class Leases:
                 ),
             )
             self._tally_finish(conn, row, JobStatus.FAILED, now)
+            self._child_ended(conn, row["job_id"], JobStatus.FAILED, error, now)
             return JobStatus.FAILED
         self._exec(
             conn,
@@ -174,6 +183,7 @@ class Leases:
                     ),
                 )
                 self._tally_finish(conn, row, JobStatus.FAILED, now)
+                self._child_ended(conn, job_id, JobStatus.FAILED, error, now)
         self._discard_artifact_data(job_id)
         return True
 

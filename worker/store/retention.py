@@ -57,7 +57,10 @@ class Retention:
         now = time.time()
         rows = self._all(
             self._conn(),
-            "SELECT job_id FROM jobs WHERE expires <= ? ORDER BY expires LIMIT ?",
+            # A study's chunk outlives its expiry until the study has assembled it.
+            "SELECT job_id FROM jobs WHERE expires <= ? AND (parent_id IS NULL OR NOT EXISTS "
+            "(SELECT 1 FROM jobs p WHERE p.job_id = jobs.parent_id AND p.finished IS NULL)) "
+            "ORDER BY expires LIMIT ?",
             (now, limit),
         )
         job_ids = [r["job_id"] for r in rows]

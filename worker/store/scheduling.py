@@ -12,7 +12,8 @@ cheap job if one is queued, else any job in fair order: so a single-worker pool 
 nothing, and a small job waits at most for the job its slot is running.
 
 **Running cap.**  With ``max_running_per_owner``, an owner (other than the anonymous
-owner of a service without keys) with that many jobs running is skipped until one ends.
+owner of a service without keys) with that many jobs running is skipped until one ends
+(a study's chunks count; the study itself, parked while they run, does not).
 
 Claims stay what :mod:`worker.store.leases` makes them: one short transaction that
 locks the job (PostgreSQL: ``FOR UPDATE SKIP LOCKED``, so concurrent claimers take
@@ -112,13 +113,14 @@ class Scheduling:
         return None
 
     def _capped(self, conn: Conn, owner: str, max_running: int | None) -> bool:
-        """Whether the owner runs as many jobs (without a parent) as it may."""
+        """Whether the owner runs as many jobs as it may: jobs holding a worker, a
+        study's chunks included, a study waiting for its chunks not (it holds none)."""
         if max_running is None or owner == "":
             return False
         row = self._one(
             conn,
             "SELECT COUNT(*) AS n FROM (SELECT 1 FROM jobs WHERE owner = ? AND status = ? "
-            "AND parent_id IS NULL LIMIT ?) AS r",
+            "AND COALESCE(phase, '') <> 'waiting' LIMIT ?) AS r",
             (owner, _RUNNING, max_running),
         )
         return row is not None and int(row["n"]) >= max_running

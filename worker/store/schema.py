@@ -209,4 +209,18 @@ MIGRATIONS: tuple[tuple[int, tuple[str, ...]], ...] = (
             "CREATE INDEX expired_jobs_forget ON expired_jobs (forget)",
         ),
     ),
+    (
+        8,
+        # Jobs that fan out (worker.store.fan_out): a parent's `phase` (NULL, 'waiting'
+        # while its children run, 'assembling' once they all ended), how many children
+        # it has and how many ended (and failed), and whether it accepts a partial result.
+        (
+            "ALTER TABLE jobs ADD COLUMN phase TEXT",
+            "ALTER TABLE jobs ADD COLUMN children_total INTEGER",
+            "ALTER TABLE jobs ADD COLUMN children_done INTEGER NOT NULL DEFAULT 0",
+            "ALTER TABLE jobs ADD COLUMN children_failed INTEGER NOT NULL DEFAULT 0",
+            "ALTER TABLE jobs ADD COLUMN partial_ok INTEGER NOT NULL DEFAULT 0",
+            "CREATE INDEX jobs_parent ON jobs (parent_id, seq)",
+        ),
+    ),
 )

@@ -34,6 +34,7 @@ from worker.store.artifact_index import ArtifactIndex
 from worker.store.base import JobFilter, JobPage, NewJob
 from worker.store.bookkeeping import Bookkeeping
 from worker.store.callbacks import Callbacks
+from worker.store.fan_out import FanOut
 from worker.store.job_listing import filter_clauses
 from worker.store.leases import Leases
 from worker.store.quotas import Quotas
@@ -80,7 +81,16 @@ def decode_cursor(cursor: str) -> int:
 
 
 class SqlJobStore(
-    Scheduling, Leases, Quotas, Retention, ArtifactIndex, Bookkeeping, Callbacks, ApiKeys, Tallies
+    Scheduling,
+    Leases,
+    FanOut,
+    Quotas,
+    Retention,
+    ArtifactIndex,
+    Bookkeeping,
+    Callbacks,
+    ApiKeys,
+    Tallies,
 ):
     """A :class:`worker.store.base.JobStore` over a DB-API connection."""
 
@@ -191,6 +201,11 @@ class SqlJobStore(
             artifacts=artifacts,
             owner=row["owner"],
             expires=_ts(row["expires"]),
+            parent_id=row["parent_id"],
+            phase=row["phase"],
+            children_total=row["children_total"],
+            children_done=row["children_done"],
+            children_failed=row["children_failed"],
         )
 
     def create_job(self, new: NewJob) -> tuple[JobRecord, bool]:
@@ -297,6 +312,11 @@ class SqlJobStore(
         params: list[Any] = []
         if where is not None:
             clauses, params = filter_clauses(where, time.time())
+        if where is None or where.parent_id is None:  # a study's chunks only when asked
+            clauses.append("parent_id IS NULL")
+        else:
+            clauses.append("parent_id = ?")
+            params.append(where.parent_id)
         if owner is not None:
             clauses.append("owner = ?")
             params.append(owner)
@@ -327,15 +347,19 @@ class SqlJobStore(
             if row is None:
                 return None
             if row["status"] != JobStatus.DISMISSED.value:
+                unfinished = row["status"] in (_ACCEPTED, _RUNNING)
                 self._tally_finish(conn, row, JobStatus.DISMISSED, now)
                 self._exec(conn, "DELETE FROM artifact_index WHERE job_id = ?", (job_id,))
                 self._exec(
                     conn,
                     "UPDATE jobs SET status = ?, result = NULL, finished = COALESCE(finished, ?),"
-                    " expires = COALESCE(finished, ?) + retention_s, updated = ?,"
+                    " expires = COALESCE(finished, ?) + retention_s, updated = ?, phase = NULL,"
                     " message = 'dismissed by the client' WHERE job_id = ?",
                     (JobStatus.DISMISSED.value, now, now, now, job_id),
                 )
+                if unfinished:  # its unfinished chunks stop; its parent counts the end
+                    self._dismiss_children(conn, job_id, now, "dismissed with its study")
+                    self._child_ended(conn, job_id, JobStatus.DISMISSED, None, now)
             record = self._record(conn, self._job_row(conn, job_id))
         self._discard_artifact_data(job_id)
         return record

@@ -16,7 +16,6 @@ from typing import Literal
 
 import numpy as np
 from numpy.typing import NDArray
-from scipy.stats import qmc
 
 __all__ = ["DesignSpace", "GridSpace", "SampleSpace"]
 
@@ -68,6 +67,8 @@ class SampleSpace:
         return tuple(name for name, *_ in self.bounds)
 
     def block(self, start: int, stop: int) -> FloatArray:
+        from scipy.stats import qmc  # here: loading the registry must not load scipy
+
         d = len(self.bounds)
         if self.method == "sobol":
             engine = qmc.Sobol(d, scramble=True, rng=np.random.default_rng(self.seed))

@@ -24,6 +24,7 @@ __all__ = [
     "parse_input_path",
     "parse_result_path",
     "read_result",
+    "reported",
     "with_input",
 ]
 
@@ -166,3 +167,25 @@ def read_result(result: Mapping[str, Any], path: ResultPath) -> float | None:
     if path.reduction == "max":
         return max(present)
     return math.fsum(present) / len(present)
+
+
+def reported(result: Mapping[str, Any], path: ResultPath) -> bool:
+    """Whether ``result`` has the place ``path`` names, whatever its value there: every
+    key present, every index in range; a null on the way may hide what is below it, and
+    counts as present (a design may lack a value that other designs have)."""
+    values: list[Any] = [result]
+    for step in path.steps:
+        found: list[Any] = []
+        for value in values:
+            if value is None:
+                continue
+            if step is None:
+                if not isinstance(value, list):
+                    return False
+                found.extend(value)
+            elif not _has(value, step):
+                return False
+            else:
+                found.append(value[step])
+        values = found
+    return True

@@ -68,6 +68,9 @@ def figures(monkeypatch: pytest.MonkeyPatch) -> Iterator[list[tuple[str, Figure]
             module = importlib.import_module(f"{jobs.__name__}.{info.name}")
             if hasattr(module, "figure_artifacts"):
                 monkeypatch.setattr(module, "figure_artifacts", capture)
+    monkeypatch.setattr(
+        importlib.import_module("worker.studies.outcome"), "figure_artifacts", capture
+    )
     yield captured
 
 

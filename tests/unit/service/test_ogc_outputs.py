@@ -38,6 +38,12 @@ SMALL: dict[str, dict[str, Any] | None] = {
         "max_generations": 3,
         "grid": {"points_per_axis": 15},
     },
+    "design-study": {
+        "process": "planar3r-dexterity-map",
+        "fixed": {"links": [15, 14, 8], "task_points": [[14, 14]], "grid": {"points_per_axis": 5}},
+        "vary": {"links[0]": [10, 20, 3], "links[2]": [6, 8, 2]},
+        "objectives": {"task_points[].d_z|min": "max", "links|sum": "min"},
+    },
     "planar2dof-conditioning-map": {
         "l2": 1.5,
         "architecture": "isotropic",

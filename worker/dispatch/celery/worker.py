@@ -39,7 +39,7 @@ from worker.contract import JobStatus
 from worker.dispatch.celery.app import create_celery_app
 from worker.dispatch.celery.dispatch import CeleryDispatch, Sweeper
 from worker.logs import log_context, stdout_as_log_lines
-from worker.processes import default_registry
+from worker.processes import worker_registry
 from worker.retention import RetentionSweeper
 from worker.runner import WorkerLoop, lower_priority, worker_id_for
 from worker.settings import WorkerSettings
@@ -63,7 +63,10 @@ def _loop_for_this_process(app: Celery) -> WorkerLoop:
         store = open_store(settings.resolved_store_url(), retry_s=settings.store_retry_seconds)
         # The pool's first process prefers cheap jobs (its index is kept when replaced).
         cheap = current_process_index(base=0) == 0
-        loop = WorkerLoop(settings, store, default_registry(), prefer_cheap=cheap)
+        sender = _Sender(settings, store)
+        loop = WorkerLoop(
+            settings, store, worker_registry(), prefer_cheap=cheap, on_queued=sender.send
+        )
         runtime = _ProcessRuntime(os.getpid(), loop)
         app.dexlab_runtime = runtime
     return runtime.loop
@@ -73,6 +76,22 @@ def run_delivered_job(app: Celery, job_id: str) -> float | None:
     """Run the delivered job if it can be claimed; seconds to retry after, or None."""
     with log_context(job_id=job_id):
         return _run_delivered_job(app, job_id)
+
+
+class _Sender:
+    """Sends the jobs a pool process queued (a study's chunks, a study to assemble):
+    one message each, as for a submission (the broker connection made on first use)."""
+
+    def __init__(self, settings: WorkerSettings, store: Any) -> None:
+        self._settings = settings
+        self._store = store
+        self._dispatch: CeleryDispatch | None = None
+
+    def send(self, job_ids: Any) -> None:
+        if self._dispatch is None:
+            self._dispatch = CeleryDispatch(self._settings, self._store)
+        for job_id in job_ids:
+            self._dispatch.dispatch(job_id, 0.0)
 
 
 def _run_delivered_job(app: Celery, job_id: str) -> float | None:

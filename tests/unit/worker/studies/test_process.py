@@ -1,0 +1,80 @@
+"""The design-study process: the submission's dry check of the first design, chunking,
+the cost model, and a whole study run in one process."""
+
+from __future__ import annotations
+
+from typing import Any
+
+import pytest
+
+from tests.unit.families.conftest import RecordingContext
+from worker.processes import default_registry
+from worker.studies.paths import parse_result_path, reported
+from worker.studies.process import STUDY, chunk_inputs, dry_check, study_cost
+from worker.studies.spec import StudySpec
+
+BASE: dict[str, Any] = {
+    "process": "planar3r-dexterity-map",
+    "fixed": {"links": [15, 14, 8], "task_points": [[14, 14]], "grid": {"points_per_axis": 5}},
+    "vary": {"links[2]": [6, 10, 3]},
+    "objectives": {"task_points[].d_z|min": "max"},
+}
+
+
+def spec(**change: Any) -> StudySpec:
+    return StudySpec.model_validate({**BASE, **change})
+
+
+def test_the_dry_check_passes_a_sound_study() -> None:
+    assert dry_check(spec()) == []
+
+
+def test_an_objective_the_process_never_reports_is_refused() -> None:
+    problems = dry_check(spec(objectives={"task_point[].d_z|min": "max", "links|sum": "min"}))
+    assert [p["field"] for p in problems] == ["inputs.objectives.task_point[].d_z|min"]
+    assert "reports nothing at this path" in problems[0]["message"]
+
+
+def test_fixed_inputs_refused_whatever_is_varied_are_refused() -> None:
+    problems = dry_check(spec(fixed={**BASE["fixed"], "grid": {"points": 5}}))
+    assert [p["field"] for p in problems] == ["inputs.fixed"]
+    assert "grid" in problems[0]["message"]
+
+
+def test_a_first_design_refused_for_a_varied_value_is_no_error() -> None:
+    assert dry_check(spec(vary={"links[2]": [-1, 8, 3]})) == []
+
+
+def test_null_values_count_as_reported() -> None:
+    result = {"indices": {"rms": None}, "trajectory": None, "rows": []}
+    for path, expected in [("indices.rms", True), ("trajectory.d_z_min", True),
+                           ("rows[].x|min", True), ("indices.gci", False), ("rows[3].x", False),
+                           ("indices[].rms|min", False)]:  # fmt: skip
+        assert reported(result, parse_result_path(path)) is expected, path
+
+
+def test_chunks_cover_every_design_once_in_order() -> None:
+    study = spec(vary={"links[2]": [6, 10, 11]}, chunk_size=4)
+    chunks = chunk_inputs(study)
+    assert [(c["start"], c["stop"]) for c in chunks] == [(0, 4), (4, 8), (8, 11)]
+    timed = chunk_inputs(spec(vary={"links[2]": [6, 10, 11]}))
+    assert len(timed) >= 3  # at least four chunks' worth of designs each (11 designs)
+    assert timed[0]["start"] == 0 and timed[-1]["stop"] == 11
+
+
+def test_the_cost_is_designs_times_the_first_designs_share_of_the_limit() -> None:
+    process = default_registry().get("planar3r-dexterity-map")
+    assert process is not None
+    study = spec(vary={"links[2]": [6, 10, 1000]})
+    share = 25 / process.cost_limit  # a 5 x 5 closed-form map
+    assert study_cost(study) == pytest.approx(1000 * share * 1e6, abs=1)
+    assert study_cost(study) <= STUDY.cost_limit
+
+
+def test_the_whole_study_in_one_process() -> None:
+    outcome = STUDY.run(spec(objectives={"task_points[].d_z|min": "max", "links|sum": "min"},
+                             plots=False), RecordingContext())  # fmt: skip
+    result = outcome.result
+    assert (result["count"], result["evaluated"], result["feasible"]) == (3, 3, 3)
+    assert [a.name for a in outcome.artifacts] == ["designs.csv", "designs.npz"]
+    assert result["best"]["links|sum"][0]["parameters"] == {"links[2]": 6.0}

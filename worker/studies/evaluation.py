@@ -1,0 +1,110 @@
+"""Evaluating a block of a study's designs with the single-design process.
+
+Each design is the fixed inputs with the varied values set at their paths, validated as
+the service validates a request of that process (its model, its published schema, its
+cost limit), run as a job of that process would run
+(plots off when the process has the switch) and read at the objective paths.  A design
+is infeasible exactly when the process refuses it (its reason is kept) or reports no
+value for an objective; a design whose run raises is kept too, with the error.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import dataclass
+from typing import Any
+
+from worker.errors import InvalidInputs
+from worker.processes import ProcessDefinition
+from worker.studies.paths import parse_input_path, parse_result_path, read_result, with_input
+from worker.studies.spec import StudySpec
+from worker.submission import validate_inputs
+
+__all__ = ["DesignRow", "design_inputs", "evaluate_block"]
+
+
+@dataclass(frozen=True)
+class DesignRow:
+    """One evaluated design: its index, varied values, objective values (None where
+    the process reported none) and, when infeasible, why."""
+
+    index: int
+    parameters: tuple[float, ...]
+    objectives: tuple[float | None, ...]
+    reason: str | None
+
+    @property
+    def feasible(self) -> bool:
+        return self.reason is None
+
+    def as_json(self) -> dict[str, Any]:
+        return {"index": self.index, "parameters": list(self.parameters),
+                "objectives": list(self.objectives), "reason": self.reason}  # fmt: skip
+
+
+class _Silent:
+    """The nested run's context: a design's own progress is not the study's."""
+
+    def report_progress(self, percent: float, message: str = "") -> None:
+        pass
+
+
+def design_inputs(spec: StudySpec, values: tuple[float, ...]) -> dict[str, Any]:
+    """The process's raw inputs for one design: ``fixed`` with the varied values set."""
+    inputs: dict[str, Any] = dict(spec.fixed)
+    for name, value in zip(spec.designs.names, values, strict=True):
+        inputs = with_input(inputs, parse_input_path(name), value)
+    return inputs
+
+
+def evaluate_block(
+    spec: StudySpec,
+    process: ProcessDefinition,
+    start: int,
+    stop: int,
+    on_design: Callable[[int, int], None] | None = None,
+) -> list[DesignRow]:
+    """Rows of the designs ``start`` to ``stop`` (exclusive) of the study."""
+    paths = [parse_result_path(name) for name in spec.objectives]
+    has_plots = "plots" in process.inputs_model.model_fields
+    rows: list[DesignRow] = []
+    block = spec.designs.block(start, stop)
+    for offset, values in enumerate(block.tolist()):
+        parameters = tuple(float(v) for v in values)
+        rows.append(_evaluate(spec, process, start + offset, parameters, paths, has_plots))
+        if on_design is not None:
+            on_design(offset + 1, stop - start)
+    return rows
+
+
+def _evaluate(
+    spec: StudySpec,
+    process: ProcessDefinition,
+    index: int,
+    parameters: tuple[float, ...],
+    paths: list[Any],
+    has_plots: bool,
+) -> DesignRow:
+    missing = (None,) * len(paths)
+    try:
+        raw = design_inputs(spec, parameters)
+        if has_plots:
+            raw["plots"] = False
+        inputs = validate_inputs(process, raw)
+    except InvalidInputs as exc:  # what the service would answer with a 422
+        return DesignRow(index, parameters, missing, f"refused: {exc}")
+    except ValueError as exc:  # a path the fixed inputs do not hold
+        return DesignRow(index, parameters, missing, f"refused: {exc}")
+    cost = process.cost(inputs)
+    if cost > process.cost_limit:
+        reason = f"refused: costs {cost:,} {process.cost_unit}, above {process.cost_limit:,}"
+        return DesignRow(index, parameters, missing, reason)
+    try:
+        outcome = process.run(inputs, _Silent())
+    except Exception as exc:  # kept with its reason, never dropped silently
+        return DesignRow(index, parameters, missing, f"failed: {type(exc).__name__}: {exc}")
+    values = tuple(read_result(outcome.result, path) for path in paths)
+    absent = [name for name, v in zip(spec.objectives, values, strict=True) if v is None]
+    return DesignRow(
+        index, parameters, values, f"no value for {', '.join(absent)}" if absent else None
+    )

@@ -1,0 +1,89 @@
+"""A study's outcome: the result document, the data files and the figures."""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+
+from worker.common.figures import figure_artifacts
+from worker.contract import Artifact, JobContext, JobOutcome
+from worker.processes import ChildResults, ProcessDefinition
+from worker.studies.assembly import StudyTable, collect, pareto_rows, summary
+from worker.studies.designs import GridSpace
+from worker.studies.figures import code, objective_maps_figure, pareto_figure
+from worker.studies.files import AS_REPORTED, designs_csv, designs_npz, parameter_unit
+from worker.studies.spec import StudySpec
+
+__all__ = ["study_outcome"]
+
+
+def study_outcome(spec: StudySpec, children: ChildResults, ctx: JobContext) -> JobOutcome:
+    from worker.processes import default_registry
+
+    process = default_registry().get(spec.process)
+    assert process is not None
+    ctx.report_progress(90.0, "assembling the chunks")
+    counted: list[int] = []
+
+    def counting(items: ChildResults) -> ChildResults:
+        for item in items:
+            counted.append(1)
+            yield item
+
+    table = collect(spec, counting(children))
+    result: dict[str, Any] = {"process": spec.process, **summary(spec, table),
+                              "chunks": len(counted)}  # fmt: skip
+    ctx.report_progress(95.0, "data files and figures")
+    artifacts: tuple[Artifact, ...] = (
+        designs_csv(spec, process, table),
+        designs_npz(spec, process, table),
+    )
+    if spec.plots:
+        artifacts += _figures(spec, process, table)
+    return JobOutcome(result=result, artifacts=artifacts, notes=tuple(_notes(result)))
+
+
+def _figures(
+    spec: StudySpec, process: ProcessDefinition, table: StudyTable
+) -> tuple[Artifact, ...]:
+    labels = [f"{code(name)} [{AS_REPORTED}]" for name in spec.objectives]
+    out: tuple[Artifact, ...] = ()
+    space = spec.designs
+    axes = [a for a in space.axes if a[3] > 1] if isinstance(space, GridSpace) else []
+    if isinstance(space, GridSpace) and 1 <= len(axes) <= 2 and table.index.size == space.count:
+        positions = [space.names.index(a[0]) for a in axes]
+        shape = tuple(a[3] for a in axes)
+        values = np.where(table.feasible[:, None], table.objectives, np.nan)
+        maps = [values[:, k].reshape(shape) for k in range(values.shape[1])]
+        axes_labels = [f"{code(a[0])} [{parameter_unit(process, a[0], spec.fixed)}]" for a in axes]
+        values_of_axes = [space.values(position) for position in positions]
+        title = f"Design study of {spec.process}"
+        fig = objective_maps_figure(values_of_axes, axes_labels, maps, labels, title)
+        out += figure_artifacts(fig, "objective_maps", "Each objective over the varied inputs")
+    if len(spec.objectives) >= 2:
+        front = pareto_rows(spec, table)
+        values = np.where(table.feasible[:, None], table.objectives, np.nan)
+        fig = pareto_figure(values, front, labels, list(spec.objectives.values()),
+                            f"Design study of {spec.process}: objective space")  # fmt: skip
+        out += figure_artifacts(fig, "pareto", "The objectives and the non-dominated designs")
+    return out
+
+
+def _notes(result: dict[str, Any]) -> list[str]:
+    notes = [
+        f"{result['feasible']:,} of {result['count']:,} designs are feasible; "
+        f"{result['pareto_size']:,} are non-dominated."
+    ]
+    if result["infeasible_reasons"]:
+        top = result["infeasible_reasons"][0]
+        notes.append(
+            f"{result['evaluated'] - result['feasible']:,} designs are infeasible; the most "
+            f"frequent reason ({top['designs']:,}): {top['reason']}"
+        )
+    if result["missing"]:
+        notes.append(
+            f"{result['missing']:,} designs are missing: chunks "
+            f"{', '.join(result['missing_chunks'])} failed (allow_partial)."
+        )
+    return notes

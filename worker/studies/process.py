@@ -1,0 +1,260 @@
+"""``design-study``: a single-design process evaluated over many designs, fanned out over
+every worker, with the non-dominated set of its objectives.
+
+Its first attempt splits the designs into chunks of about a second of work (timed on
+the first design) and queues them as ``design-study-chunk`` jobs
+(:mod:`worker.store.fan_out`); the parent holds no worker while they run, and the
+chunk that ends last queues the assembly (:mod:`.assembly`, :mod:`.files`,
+:mod:`.figures`).  ``run`` does the same in one process (tests, small studies).
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from types import MappingProxyType
+from typing import Any
+
+from worker.contract import ChildEnd, JobContext, JobOutcome, JobStatus
+from worker.processes import (
+    ChildResults,
+    FanOutSteps,
+    ProcessDefinition,
+    ProcessExample,
+    ProcessFile,
+    figure_files,
+)
+from worker.studies.spec import MAX_CHUNK, StudySpec
+
+__all__ = ["STUDY", "chunk_inputs", "study_cost"]
+
+#: Aimed-for work per chunk (seconds), and the least number of chunks of a study.
+CHUNK_SECONDS = 1.0
+MIN_CHUNKS = 4
+#: A study may cost as much as this many jobs of its process at their cost limit.
+STUDY_JOBS_LIMIT = 1000
+_MILLIONTHS = 1_000_000
+
+
+def _target(spec: StudySpec) -> ProcessDefinition:
+    from worker.processes import default_registry
+
+    process = default_registry().get(spec.process)
+    assert process is not None  # the study's validator checked it
+    return process
+
+
+def study_cost(spec: StudySpec) -> int:
+    """Designs x the first design's cost, in millionths of the process's cost limit."""
+    from worker.errors import InvalidInputs
+    from worker.studies.evaluation import design_inputs
+    from worker.submission import validate_inputs
+
+    process = _target(spec)
+    first = tuple(float(v) for v in spec.designs.block(0, 1)[0])
+    try:
+        design_cost = int(process.cost(validate_inputs(process, design_inputs(spec, first))))
+    except (InvalidInputs, ValueError):
+        design_cost = 1  # refused designs cost next to nothing
+    share = min(1.0, design_cost / process.cost_limit)
+    return math.ceil(spec.designs.count * share * _MILLIONTHS)
+
+
+def dry_check(spec: StudySpec) -> list[dict[str, Any]]:
+    """At submission: the first design run once, so that fixed inputs the process
+    refuses whatever the varied values, and objective paths it does not report, are a
+    422 before anything is queued.  A first design the process refuses for a varied
+    value is no error (other designs may be fine); a first design too costly to run
+    during a request (above the process's sync limit and a thousandth of its cost
+    limit) is not run."""
+    from worker.errors import InvalidInputs
+    from worker.studies.evaluation import design_inputs
+    from worker.studies.paths import parse_result_path, reported
+    from worker.submission import validate_inputs
+
+    process = _target(spec)
+    first = tuple(float(v) for v in spec.designs.block(0, 1)[0])
+    raw = design_inputs(spec, first)
+    if "plots" in process.inputs_model.model_fields:
+        raw["plots"] = False
+    try:
+        inputs = validate_inputs(process, raw)
+    except InvalidInputs as exc:
+        varied = {_field_of(name) for name in spec.designs.names}
+        if any(any(e["field"].startswith(v) for v in varied) for e in exc.errors):
+            return []
+        message = f"{spec.process} refuses the first design whatever is varied: {exc}"
+        return [{"field": "inputs.fixed", "type": "value_error", "message": message}]
+    if process.cost(inputs) > max(process.sync_cost_limit, process.cost_limit // 1000):
+        return []
+    try:
+        result = process.run(inputs, _Quiet()).result
+    except Exception:  # the study records it design by design
+        return []
+    return [
+        {"field": f"inputs.objectives.{name}", "type": "value_error",
+         "message": f"{spec.process} reports nothing at this path (checked on the first design)"}
+        for name in spec.objectives
+        if not reported(result, parse_result_path(name))
+    ]  # fmt: skip
+
+
+def _field_of(name: str) -> str:
+    """An input path as the field errors spell it: ``links[0]`` -> ``inputs.links[0]``."""
+    return f"inputs.{name}"
+
+
+def chunk_size(spec: StudySpec) -> int:
+    """The requested chunk size, or about CHUNK_SECONDS of work (timed on the first
+    design), with at least MIN_CHUNKS chunks when there are that many designs."""
+    if spec.chunk_size is not None:
+        return spec.chunk_size
+    from worker.studies.evaluation import evaluate_block
+
+    start = time.perf_counter()
+    evaluate_block(spec, _target(spec), 0, 1)
+    seconds = max(time.perf_counter() - start, 1e-4)
+    count = spec.designs.count
+    size = math.ceil(CHUNK_SECONDS / seconds)
+    return max(1, min(size, math.ceil(count / MIN_CHUNKS), MAX_CHUNK))
+
+
+def chunk_inputs(spec: StudySpec) -> list[dict[str, Any]]:
+    """The chunks' inputs: the study and each block of designs, in order."""
+    size = chunk_size(spec)
+    study = spec.model_dump(mode="json")
+    count = spec.designs.count
+    return [
+        {"study": study, "start": start, "stop": min(start + size, count)}
+        for start in range(0, count, size)
+    ]
+
+
+def assemble(spec: StudySpec, children: ChildResults, ctx: JobContext) -> JobOutcome:
+    from worker.studies.outcome import study_outcome
+
+    return study_outcome(spec, children, ctx)
+
+
+def run_in_process(spec: StudySpec, ctx: JobContext) -> JobOutcome:
+    """The whole study in this process: each chunk run here, then assembled."""
+    from worker.studies.chunk import ChunkSpec, run_chunk
+
+    chunks = chunk_inputs(spec)
+
+    def children() -> ChildResults:
+        for n, inputs in enumerate(chunks):
+            outcome = run_chunk(ChunkSpec.model_validate(inputs), _Quiet())
+            ctx.report_progress(90.0 * (n + 1) / len(chunks), f"chunk {n + 1} of {len(chunks)}")
+            yield ChildEnd(f"chunk-{n}", JobStatus.SUCCESSFUL, None), outcome.result
+
+    return assemble(spec, children(), ctx)
+
+
+class _Quiet:
+    def report_progress(self, percent: float, message: str = "") -> None:
+        pass
+
+
+_LIMITS = [[-150, 150], [-150, 150], [-175, 175]]
+_EXAMPLES = (
+    ProcessExample(
+        title="3R arm: worst task-point d_z and total length over (l1, l2)",
+        inputs=MappingProxyType(
+            {
+                "process": "planar3r-dexterity-map",
+                "fixed": {
+                    "links": [15, 14, 8],
+                    "joint_limits_deg": _LIMITS,
+                    "task_points": [[14, 14], [12, 8], [10, -3], [9, -7], [8, -8]],
+                    "grid": {"points_per_axis": 5},
+                },
+                "vary": {"links[0]": [10, 20, 6], "links[1]": [8, 18, 6]},
+                "objectives": {"task_points[].d_z|min": "max", "links|sum": "min"},
+            }
+        ),
+        description="Patel & Sobh's Example 1 under its joint limits, l3 = 8: 36 designs, "
+        "the worst d_z at A..E against the arm's total length, and their Pareto front.",
+    ),
+    ProcessExample(
+        title="SPM: RMS and worst 1/kappa over (alpha1, alpha2), a Sobol sample",
+        inputs=MappingProxyType(
+            {
+                "process": "spm-conditioning-map",
+                "fixed": {
+                    "beta_deg": 90,
+                    "gamma_deg": 0,
+                    "workspace": {
+                        "tilt_max_deg": 60,
+                        "torsion_deg": [0, 360],
+                        "samples": {"azimuth": 6, "tilt": 3, "torsion": 3},
+                    },
+                },
+                "sample": {
+                    "method": "sobol",
+                    "count": 12,
+                    "seed": 1,
+                    "bounds": {"alpha1_deg": [45, 90], "alpha2_deg": [60, 120]},
+                },
+                "objectives": {
+                    "indices.rms_inverse_condition": "max",
+                    "indices.min_inverse_condition": "max",
+                },
+            }
+        ),
+        description="Bai's spherical manipulator with beta = 90 deg over a 60 deg tilt "
+        "workspace: 12 Sobol designs of (alpha1, alpha2), the RMS and the worst 1/kappa.",
+    ),
+)
+
+STUDY = ProcessDefinition(
+    id="design-study",
+    title="Design study: one process over many designs, with the Pareto front",
+    description=(
+        "Evaluates any single-design process ('process', its other inputs in 'fixed') over "
+        "a grid ('vary': input path -> [lo, hi, n]) or a Sobol / Latin-hypercube sample "
+        "('sample') of designs, and reports every design's objectives (result paths -> "
+        "'max' or 'min', a list reduced with |min, |max, |mean or |sum), the non-dominated "
+        "designs and the best per objective. The designs are split into chunk jobs of about "
+        "a second each that run on every worker at once; a design the process refuses, or "
+        "that has no value for an objective, is kept as infeasible with its reason. Cost: "
+        "designs x the first design's cost, in millionths of the process's cost limit; at "
+        f"most {STUDY_JOBS_LIMIT} jobs' worth."
+    ),
+    inputs_model=StudySpec,
+    files=(
+        ProcessFile("designs.csv", "Every design: parameters and objectives (CSV)"),
+        ProcessFile("designs.npz", "Every design (NumPy arrays)"),
+        *figure_files("objective_maps", "Each objective over the varied inputs"),
+        *figure_files("pareto", "The objectives and the non-dominated designs"),
+    ),
+    method_doc="design-studies",
+    run=run_in_process,
+    examples=_EXAMPLES,
+    outputs={
+        "process": "The process evaluated.",
+        "count": "Designs in the study.",
+        "evaluated": "Designs evaluated (count minus those of missing chunks).",
+        "feasible": "Designs with a value for every objective.",
+        "missing": "Designs of chunks that failed (allow_partial).",
+        "missing_chunks": "The chunk jobs that failed.",
+        "infeasible_reasons": "Why designs are infeasible, most frequent first.",
+        "parameters": "The varied input paths, in column order.",
+        "objectives": "The objectives (result path -> 'max' or 'min').",
+        "pareto_size": "How many designs are non-dominated.",
+        "pareto": "The non-dominated designs (at most 1000 listed): index, parameters, objectives.",
+        "best": "Per objective, the best designs (best_count).",
+        "chunks": "How many chunks ran.",
+    },
+    cost=study_cost,
+    precheck=dry_check,
+    cost_limit=STUDY_JOBS_LIMIT * _MILLIONTHS,
+    cost_unit="designs x their cost in millionths of the process's cost limit",
+    time_limit_s=1800.0,
+    fan_out=FanOutSteps(
+        child_process="design-study-chunk",
+        split=chunk_inputs,
+        assemble=assemble,
+        allow_partial=lambda spec: bool(spec.allow_partial),
+    ),
+)
