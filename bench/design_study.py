@@ -9,8 +9,9 @@ workspace at a coarse sampling) over a grid of (alpha1, alpha2) runs on a real
 1. embedded (SQLite + local pool) with 1 worker process, then with 2: wall time from
    submission to the assembled result, and the speed-up (target >= 1.7x);
 2. Celery over Redis with PostgreSQL and two single-process `dexlab worker`s;
-3. the per-chunk overhead: wall time x worker processes, less the designs' own time
-   (measured in this process on a block of designs), per chunk.
+3. the per-chunk overhead, on one worker process (embedded, and Celery with one
+   `dexlab worker`): the same 200 designs in 200 chunks of one design and in 4 chunks
+   of 50, the difference in wall time per extra chunk.
 
 Chunks default to the study's own sizing (about a second of work each).
 (PostgreSQL and Redis must be reachable on loopback for 2.)
@@ -92,20 +93,29 @@ def main(argv: list[str] | None = None) -> None:
          {"workers": 0, "worker_processes": 2}, 2),
     ]  # fmt: skip
     walls: dict[str, float] = {}
-    for label, backend, options, processes in rows:
+    for label, backend, options, _ in rows:
         wall, result = run(backend, inputs, **options)
         walls[label] = wall
-        chunks = result["chunks"]
-        overhead = (wall * processes - count * per_design) / chunks
-        print(
-            f"  {label:46s} {wall:7.1f} s, {chunks} chunks, {result['feasible']:,} feasible, "
-            f"{result['pareto_size']} non-dominated; overhead {overhead * 1e3:6.1f} ms/chunk"
-        )
+        feasible, front = result["feasible"], result["pareto_size"]
+        print(f"  {label:46s} {wall:7.1f} s, {result['chunks']} chunks, {feasible:,} feasible, "
+              f"{front} non-dominated")  # fmt: skip
     one, two = walls[rows[0][0]], walls[rows[1][0]]
     print(f"  speed-up, 2 worker processes against 1 (embedded): {one / two:.2f}x (target >= 1.7x)")
     print(
         f"  speed-up, 2 Celery workers against 1 embedded process: {one / walls[rows[2][0]]:.2f}x"
     )
+    small = study(200, 1)
+    print("\nper-chunk overhead, one worker process, 200 designs:")
+    for label, backend, options in (
+        ("embedded", "embedded", {"workers": 1}),
+        ("Celery + Redis + PostgreSQL", "celery-redis", {"workers": 0, "worker_processes": 1}),
+    ):
+        many, _ = run(backend, small, **options)
+        few, _ = run(backend, {**small, "chunk_size": 50}, **options)
+        print(
+            f"  {label:28s} 200 chunks {many:6.1f} s, 4 chunks {few:6.1f} s: "
+            f"{(many - few) / 196 * 1e3:6.1f} ms per chunk"
+        )
 
 
 if __name__ == "__main__":

@@ -173,7 +173,9 @@ async def test_landing_conformance_and_processes(pool: httpx.AsyncClient) -> Non
         "core", "ogc-process-description", "json", "html", "job-list", "dismiss", "callback",
     ]  # fmt: skip
     assert conformance["conformsTo"] == [CONF + c for c in expected]  # no oas30: 3.1 is served
-    listing = (await pool.get("/ogc/processes")).json()
+    first = (await pool.get("/ogc/processes")).json()  # 10 per page by default
+    assert len(first["processes"]) == 10 and "next" in [link["rel"] for link in first["links"]]
+    listing = (await pool.get("/ogc/processes", params={"limit": 100})).json()
     OgcProcessList.model_validate(listing)
     rels_of_list = [link["rel"] for link in listing["links"]]
     assert len(listing["processes"]) == 11 and rels_of_list == ["self", "alternate"]
