@@ -83,7 +83,7 @@ def run_dexterity_map(spec: DexterityMapSpec, ctx: JobContext) -> JobOutcome:
     radial_dz = _radial_section(links, radial_d, sampling)
 
     result = _result(spec, grid, sampling, d_z, task_entries, trajectory)
-    notes = _notes(spec, sampling, task_entries, trajectory)
+    notes = _notes(spec, sampling, task_entries, trajectory, result["regions"])
     errata = dexterity_map_errata_notes(spec, result)
 
     artifacts: tuple[Artifact, ...] = ()
@@ -202,8 +202,9 @@ def _notes(
     sampling: LimitedJoints | None,
     task_entries: list[dict[str, Any]],
     trajectory: dict[str, float | int] | None,
+    regions: list[dict[str, Any]],
 ) -> list[str]:
-    notes = [region_2_note(spec.links)]
+    notes = [region_2_note(spec.links, regions)]
     if spec.joint_limits_deg is not None and sampling is None:
         notes.append("Every joint limit spans the full turn [-180, 180]: the exact closed form "
                      "for unlimited joints was used.")  # fmt: skip

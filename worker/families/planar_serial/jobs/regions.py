@@ -140,8 +140,9 @@ def region_table(links: Links) -> list[dict[str, Any]]:
     return table
 
 
-def region_2_note(links: Links) -> str:
-    """A note contrasting the paper's Region 2 with the exact full-dexterity bands."""
+def region_2_note(links: Links, table: list[dict[str, Any]] | None = None) -> str:
+    """A note contrasting the paper's Region 2 with the exact full-dexterity bands
+    (``table``: :func:`region_table` of these links, if already computed)."""
     l1, l2, l3 = links
     bands = planar_serial.full_dexterity_bands(links)
     note = (
@@ -149,7 +150,8 @@ def region_2_note(links: Links) -> str:
         f"fully dexterous set: for ({l1:.6g}, {l2:.6g}, {l3:.6g}) with unlimited joints d_z = 1 "
         f"exactly for d in {describe_bands(bands)} (docs/methods/planar-serial.md)"
     )
-    inner = [r for r in region_table(links)[:2] if r["d_z_min"] is not None]
+    regions = region_table(links) if table is None else table
+    inner = [r for r in regions[:2] if r["d_z_min"] is not None]
     dip = min(inner, key=lambda r: float(r["d_z_min"]))
     if dip["d_z_min"] < 1.0 - FULL_DEXTERITY_TOL:
         note += (
