@@ -96,7 +96,8 @@ class Leases:
             rows = self._all(
                 conn,
                 "SELECT job_id, process_id, attempts, max_attempts, worker_id, started "
-                "FROM jobs WHERE status = ? AND lease_expires < ? ORDER BY process_id, job_id"
+                "FROM jobs WHERE status = ? AND lease_expires < ? "
+                "AND COALESCE(phase, '') <> 'waiting' ORDER BY process_id, job_id"
                 f"{self.lock_clause}",
                 (_RUNNING, now),
             )
@@ -192,7 +193,9 @@ class Leases:
         with self._write() as conn:
             cur = self._exec(
                 conn,
-                "UPDATE jobs SET lease_expires = 0 WHERE worker_id = ? AND status = ?",
+                # Not a study parked while its chunks run: it holds no lease (fan_out).
+                "UPDATE jobs SET lease_expires = 0 WHERE worker_id = ? AND status = ? "
+                "AND COALESCE(phase, '') <> 'waiting'",
                 (worker_id, _RUNNING),
             )
             return int(cur.rowcount)

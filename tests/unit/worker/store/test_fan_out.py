@@ -128,3 +128,14 @@ def test_a_waiting_study_does_not_hold_its_owners_running_cap(store: JobStore) -
     first = store.claim_next("w1", 30, max_running_per_owner=1)
     assert first is not None and first.job.parent_id == parent_id  # the study holds none
     assert store.claim_next("w2", 30, max_running_per_owner=1) is None  # the chunk does
+
+
+def test_losing_the_worker_that_split_a_study_leaves_the_study_waiting(store: JobStore) -> None:
+    # The pool expires the leases of a dead process; the study it split holds none and
+    # must stay parked (requeued, it would run again as if never split).
+    parent_id, token = parent_claim(store)
+    store.split(parent_id, token, children(2))
+    assert store.expire_leases_of("w0") == 0
+    store.reap_expired()
+    parent = store.get_job(parent_id)
+    assert parent is not None and (parent.status, parent.phase) == (JobStatus.RUNNING, "waiting")
