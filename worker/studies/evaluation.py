@@ -20,7 +20,7 @@ from worker.studies.paths import parse_input_path, parse_result_path, read_resul
 from worker.studies.spec import StudySpec
 from worker.submission import validate_inputs
 
-__all__ = ["DesignRow", "design_inputs", "evaluate_block"]
+__all__ = ["DesignRow", "SilentContext", "design_inputs", "evaluate_block"]
 
 
 @dataclass(frozen=True)
@@ -42,8 +42,8 @@ class DesignRow:
                 "objectives": list(self.objectives), "reason": self.reason}  # fmt: skip
 
 
-class _Silent:
-    """The nested run's context: a design's own progress is not the study's."""
+class SilentContext:
+    """A context that drops progress: a design's own progress is not the study's."""
 
     def report_progress(self, percent: float, message: str = "") -> None:
         pass
@@ -100,7 +100,7 @@ def _evaluate(
         reason = f"refused: costs {cost:,} {process.cost_unit}, above {process.cost_limit:,}"
         return DesignRow(index, parameters, missing, reason)
     try:
-        outcome = process.run(inputs, _Silent())
+        outcome = process.run(inputs, SilentContext())
     except Exception as exc:  # kept with its reason, never dropped silently
         return DesignRow(index, parameters, missing, f"failed: {type(exc).__name__}: {exc}")
     values = tuple(read_result(outcome.result, path) for path in paths)

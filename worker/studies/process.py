@@ -24,6 +24,7 @@ from worker.processes import (
     ProcessFile,
     figure_files,
 )
+from worker.studies.evaluation import SilentContext
 from worker.studies.spec import MAX_CHUNK, StudySpec
 
 __all__ = ["STUDY", "chunk_inputs", "study_cost"]
@@ -88,7 +89,7 @@ def dry_check(spec: StudySpec) -> list[dict[str, Any]]:
     if process.cost(inputs) > max(process.sync_cost_limit, process.cost_limit // 1000):
         return []
     try:
-        result = process.run(inputs, _Quiet()).result
+        result = process.run(inputs, SilentContext()).result
     except Exception:  # the study records it design by design
         return []
     return [
@@ -147,16 +148,11 @@ def run_in_process(spec: StudySpec, ctx: JobContext) -> JobOutcome:
 
     def children() -> ChildResults:
         for n, inputs in enumerate(chunks):
-            outcome = run_chunk(ChunkSpec.model_validate(inputs), _Quiet())
+            outcome = run_chunk(ChunkSpec.model_validate(inputs), SilentContext())
             ctx.report_progress(90.0 * (n + 1) / len(chunks), f"chunk {n + 1} of {len(chunks)}")
             yield ChildEnd(f"chunk-{n}", JobStatus.SUCCESSFUL, None), outcome.result
 
     return assemble(spec, children(), ctx)
-
-
-class _Quiet:
-    def report_progress(self, percent: float, message: str = "") -> None:
-        pass
 
 
 _LIMITS = [[-150, 150], [-150, 150], [-175, 175]]
