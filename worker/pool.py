@@ -27,8 +27,9 @@ from multiprocessing.process import BaseProcess
 from typing import Any
 
 from worker.errors import StoreUnavailable
+from worker.pool_process import EXIT_STARTUP, worker_main
 from worker.retention import RetentionSweeper
-from worker.runner import EXIT_STARTUP, worker_id_for, worker_main
+from worker.runner import worker_id_for
 from worker.settings import WorkerSettings
 from worker.store.base import JobStore
 

@@ -15,9 +15,13 @@ log = logging.getLogger("dexlab.worker")
 class StoreProgress:
     """A :class:`worker.contract.JobContext` writing progress to the store.
 
-    Writes are throttled to one every ``min_interval_s`` (the final 100 always goes
-    through) and fenced by the attempt's lease token.  They are best-effort: a store
-    that is locked or down loses a progress update, never the job.
+    Writes are throttled to one every ``min_interval_s``, counted from the claim (which
+    shows the attempt running at 0 %): a job shorter than that writes none, and its
+    result's commit sets 100 %.  A report held back by the throttle is written by the
+    next report due or by :meth:`flush` (the attempt's guard calls it at each
+    heartbeat), so a long step's message shows however the job reports.  Writes are
+    fenced by the attempt's lease token and best-effort: a store that is locked or down
+    loses a progress update, never the job.
     """
 
     def __init__(
@@ -27,19 +31,24 @@ class StoreProgress:
         self._job_id = job_id
         self._token = lease_token
         self._min_interval_s = min_interval_s
-        self._last_write = 0.0
-        self._last_percent = -1.0
+        self._last_write = time.monotonic()
+        self._percent = 0.0
+        self._pending: tuple[float, str] | None = None
 
     def report_progress(self, percent: float, message: str = "") -> None:
-        percent = max(0.0, min(100.0, float(percent)))
-        now = time.monotonic()
-        if percent < 100.0 and now - self._last_write < self._min_interval_s:
+        # Progress never goes backwards.
+        self._percent = max(self._percent, max(0.0, min(100.0, float(percent))))
+        self._pending = (self._percent, message)
+        if time.monotonic() - self._last_write >= self._min_interval_s:
+            self.flush()
+
+    def flush(self) -> None:
+        """Write the report held back, if any (from any thread)."""
+        pending, self._pending = self._pending, None
+        if pending is None:
             return
-        if percent < self._last_percent:
-            percent = self._last_percent  # progress never goes backwards
+        self._last_write = time.monotonic()
         try:
-            self._store.report_progress(self._job_id, self._token, percent, message)
+            self._store.report_progress(self._job_id, self._token, *pending)
         except Exception as exc:  # best-effort: the next report tries again
             log.warning("job %s: progress not recorded (%s)", self._job_id, exc)
-        self._last_write = now
-        self._last_percent = percent

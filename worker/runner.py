@@ -1,12 +1,12 @@
 """One worker process: claim a job, run it under a lease, store the outcome, repeat.
 
 Claims take jobs in fair order (:mod:`worker.store.scheduling`); a loop made with
-``prefer_cheap`` takes a cheap job first when one is queued.  While a job runs, a guard
-thread renews the lease.  It stops the whole process (``os._exit``) when the job is
-dismissed, when another attempt took the job over, or when the job's time limit passes
-(after recording the failure); the pool then starts a fresh process in its place.
-Worker processes run at a lower scheduling priority than the API
-(:func:`lower_priority`), so requests stay quick while every core runs jobs.
+``prefer_cheap`` takes a cheap job first when one is queued.  While a job runs, the
+loop's guard thread (:mod:`worker.attempt_guard`) renews the lease.  It stops the whole
+process (``os._exit``) when the job is dismissed, when another attempt took the job
+over, or when the job's time limit passes (after recording the failure); the pool then
+starts a fresh process in its place.
+A pool process's entry point is :mod:`worker.pool_process`.
 """
 
 from __future__ import annotations
@@ -14,109 +14,33 @@ from __future__ import annotations
 import contextlib
 import logging
 import os
-import signal
 import socket
-import sys
 import threading
 import time
 from collections.abc import Callable, Sequence
+from concurrent.futures import Future, ThreadPoolExecutor
 from typing import Any
 
 from pydantic import ValidationError
 
+from worker.attempt_guard import AttemptGuard
 from worker.contract import JobStatus
 from worker.errors import StoreUnavailable
-from worker.logs import configure_logging, log_context
-from worker.processes import ProcessRegistry, worker_registry
+from worker.logs import log_context
+from worker.processes import ProcessRegistry
 from worker.progress import StoreProgress
 from worker.result_commit import commit_outcome, error_document, record_failure
 from worker.settings import WorkerSettings
-from worker.store import open_store
 from worker.store.base import Claim, JobStore, NewJob
 
-__all__ = ["AttemptGuard", "WorkerLoop", "lower_priority", "worker_id_for", "worker_main"]
+__all__ = ["WorkerLoop", "worker_id_for"]
 
 log = logging.getLogger("dexlab.worker")
-
-#: Exit codes of a worker process that stopped itself on purpose.
-EXIT_DISMISSED = 3
-EXIT_TIME_LIMIT = 4
-EXIT_LEASE_LOST = 5
 
 
 def worker_id_for(pid: int, host: str | None = None) -> str:
     """The ID a worker process registers under: ``host:pid``."""
     return f"{host or socket.gethostname()}:{pid}"
-
-
-class AttemptGuard(threading.Thread):
-    """Renews a running attempt's lease and enforces dismissal and the time limit."""
-
-    def __init__(
-        self,
-        store: JobStore,
-        claim: Claim,
-        settings: WorkerSettings,
-        worker_id: str,
-        deadline: float,
-    ) -> None:
-        super().__init__(name=f"guard-{claim.job.job_id}", daemon=True)
-        self._store = store
-        self._claim = claim
-        self._settings = settings
-        self._worker_id = worker_id
-        self._deadline = deadline
-        self._done = threading.Event()
-
-    def stop(self) -> None:
-        self._done.set()
-
-    def run(self) -> None:
-        with log_context(job_id=self._claim.job.job_id):
-            self._guard()
-
-    def _guard(self) -> None:
-        job = self._claim.job
-        interval = self._settings.heartbeat_seconds
-        while not self._done.wait(max(0.05, min(interval, self._deadline - time.time()))):
-            if time.time() >= self._deadline:
-                self._stop_for_time_limit()
-            try:
-                ack = self._store.heartbeat(
-                    job.job_id, self._claim.lease_token, self._settings.lease_seconds
-                )
-            except Exception as exc:  # the store is down or locked: keep guarding
-                log.warning("job %s: heartbeat failed (%s); still guarding", job.job_id, exc)
-                continue
-            try:
-                self._store.worker_heartbeat(self._worker_id)
-            except Exception as exc:
-                log.warning("worker %s: heartbeat failed (%s)", self._worker_id, exc)
-            if not ack.owner:
-                dismissed = ack.status is JobStatus.DISMISSED
-                log.warning(
-                    "job %s %s; stopping this process",
-                    job.job_id,
-                    "was dismissed" if dismissed else "is no longer ours",
-                )
-                os._exit(EXIT_DISMISSED if dismissed else EXIT_LEASE_LOST)
-
-    def _stop_for_time_limit(self) -> None:
-        job = self._claim.job
-        error = {
-            "type": "time-limit-exceeded",
-            "title": "Time limit exceeded",
-            "detail": (
-                f"Attempt {job.attempts} exceeded the job's time limit of "
-                f"{job.time_limit_s:g} s and was stopped."
-            ),
-        }
-        try:
-            self._store.fail(job.job_id, self._claim.lease_token, error)
-        except Exception:  # the lease lapses and the next attempt meets the limit again
-            log.exception("job %s: could not record the time limit", job.job_id)
-        log.warning("job %s exceeded its time limit; stopping", job.job_id)
-        os._exit(EXIT_TIME_LIMIT)
 
 
 class WorkerLoop:
@@ -129,6 +53,7 @@ class WorkerLoop:
         registry: ProcessRegistry,
         prefer_cheap: bool = False,
         on_queued: Callable[[Sequence[str]], None] | None = None,
+        commit_behind: bool = False,
     ) -> None:
         self.settings = settings
         self.store = store
@@ -139,15 +64,41 @@ class WorkerLoop:
         self.on_queued = on_queued
         self.worker_id = worker_id_for(os.getpid())
         self._stop = threading.Event()
+        self._next_reap = 0.0
+        self._guard = AttemptGuard(store, settings, self.worker_id)
+        #: With ``commit_behind``, a job's outcome is committed on a thread of its own
+        #: while the loop's caller goes on (a Celery delivery returns, so the broker's
+        #: acknowledgement and the next message overlap the commit); the next claim, and
+        #: :meth:`settle`, wait for it.  The lease is renewed until it is committed, so a
+        #: process that dies first leaves a job that is retried like any other.
+        self._committer = (
+            ThreadPoolExecutor(1, thread_name_prefix="commit") if commit_behind else None
+        )
+        self._pending: Future[None] | None = None
+
+    def settle(self) -> None:
+        """Wait for an outcome still being committed (before a claim, and at exit)."""
+        pending, self._pending = self._pending, None
+        if pending is not None:
+            pending.result()
 
     def claim(self) -> Claim | None:
-        """The next job in fair order (a cheap one first if this loop prefers them)."""
-        return self.store.claim_next(
+        """The next job in fair order (a cheap one first if this loop prefers them).
+        Jobs whose lease expired are requeued first, once a heartbeat interval (not
+        before every claim: a lease lasts several intervals)."""
+        self.settle()
+        now = time.monotonic()
+        reap = now >= self._next_reap
+        claim = self.store.claim_next(
             self.worker_id,
             self.settings.lease_seconds,
             prefer_cheap=self.prefer_cheap,
             max_running_per_owner=self.settings.max_running_per_key,
+            reap=reap,
         )
+        if reap:
+            self._next_reap = now + self.settings.heartbeat_seconds
+        return claim
 
     def request_stop(self) -> None:
         self._stop.set()
@@ -204,24 +155,46 @@ class WorkerLoop:
     def _execute(self, claim: Claim) -> None:
         job = claim.job
         log.info("worker %s runs job %s (attempt %d)", self.worker_id, job.job_id, job.attempts)
-        deadline = time.time() + job.time_limit_s
-        guard = AttemptGuard(self.store, claim, self.settings, self.worker_id, deadline)
-        guard.start()
+        progress = StoreProgress(self.store, job.job_id, claim.lease_token)
+        self._guard.watch(claim, time.time() + job.time_limit_s, progress)
+        outcome = None
         try:  # the guard renews the lease until the outcome is committed
             definition = self.registry.get(job.process_id)
             if definition is not None and definition.fan_out is not None and job.phase is None:
-                self._split(claim, definition, guard)
+                self._split(claim, definition)
                 return
-            outcome = self._run_job(claim)
-            if outcome is not None:
-                result, artifacts = outcome
-                commit_outcome(self.store, claim, result, artifacts, self._give_up_after_s)
+            outcome = self._run_job(claim, progress)
+            self._guard.committing()
         finally:
-            guard.stop()
-        if job.parent_id is not None:
-            self._notify_parent(job.parent_id)
+            if outcome is None:
+                self._guard.release()
+        if outcome is None:  # it failed, and its failure is recorded
+            if job.parent_id is not None:
+                self._notify_parent(job.parent_id)
+            return
+        if self._committer is not None:
+            self._pending = self._committer.submit(self._commit_behind, claim, *outcome)
+        else:
+            self._commit(claim, *outcome)
 
-    def _split(self, claim: Claim, definition: Any, guard: AttemptGuard) -> None:
+    def _commit(self, claim: Claim, result: dict[str, Any], artifacts: Any) -> None:
+        """Commit an attempt's outcome, stop guarding it, and send its parent on if it
+        was a study's last chunk."""
+        try:
+            commit_outcome(self.store, claim, result, artifacts, self._give_up_after_s)
+        finally:
+            self._guard.release()
+        if claim.job.parent_id is not None:
+            self._notify_parent(claim.job.parent_id)
+
+    def _commit_behind(self, claim: Claim, result: dict[str, Any], artifacts: Any) -> None:
+        with log_context(job_id=claim.job.job_id):
+            try:
+                self._commit(claim, result, artifacts)
+            except Exception:  # the lease lapses and the job is retried
+                log.exception("job %s: its outcome could not be committed", claim.job.job_id)
+
+    def _split(self, claim: Claim, definition: Any) -> None:
         """A fan-out job's first attempt: its children queued, itself parked (it holds
         no worker while they run; worker.store.fan_out)."""
         job = claim.job
@@ -247,8 +220,7 @@ class WorkerLoop:
             log.exception("job %s could not be split", job.job_id)
             record_failure(self.store, claim, error_document(exc), self._give_up_after_s)
             return
-        guard.stop()  # the split drops the lease: no heartbeat may follow it
-        guard.join()
+        self._guard.release()  # the split drops the lease: no heartbeat may follow it
         ids = self.store.split(job.job_id, claim.lease_token, children, allow_partial=allow_partial)
         if ids is None:
             log.warning("job %s was lost while it split", job.job_id)
@@ -272,7 +244,7 @@ class WorkerLoop:
         ):
             self.on_queued([parent_id])
 
-    def _run_job(self, claim: Claim) -> tuple[dict[str, Any], Any] | None:
+    def _run_job(self, claim: Claim, context: StoreProgress) -> tuple[dict[str, Any], Any] | None:
         job = claim.job
         definition = self.registry.get(job.process_id)
         if definition is None:
@@ -285,8 +257,6 @@ class WorkerLoop:
             return None
         try:
             inputs = definition.inputs_model.model_validate(job.inputs)
-            context = StoreProgress(self.store, job.job_id, claim.lease_token)
-            context.report_progress(0.0, "started")
             if definition.fan_out is not None and job.phase == "assembling":
                 children = self.store.child_results(job.job_id)
                 outcome = definition.fan_out.assemble(inputs, children, context)
@@ -317,59 +287,3 @@ class _Backoff:
 
     def reset(self) -> None:
         self._next = self._first
-
-
-#: Exit code of a worker process that could not start (e.g. the store cannot be opened).
-EXIT_STARTUP = 6
-
-
-def _beat_forever(liveness: Any) -> None:
-    """Tell the supervisor this process runs, twice a second, whatever the job does (a
-    frozen, e.g. SIGSTOPped, process stops beating and is killed)."""
-    while True:
-        liveness.value = time.time()
-        time.sleep(0.5)
-
-
-def lower_priority(increment: int, what: str) -> int:
-    """Lower this process's scheduling priority by ``increment`` (``os.nice``), log it
-    for ``what`` (e.g. "worker process 12"), and return the niceness it now has."""
-    before = os.nice(0)
-    now = os.nice(increment) if increment else before
-    log.info(
-        "%s runs at niceness %d (DEXLAB_WORKER_NICE=%d above the %d it started with), "
-        "so the API comes first",
-        what,
-        now,
-        increment,
-        before,
-    )
-    return now
-
-
-def worker_main(
-    settings_data: dict[str, Any],
-    parent_pid: int | None = None,
-    liveness: Any = None,
-    log_level: int = logging.INFO,
-    prefer_cheap: bool = False,
-) -> None:
-    """Entry point of a pool process (spawned): lower its priority, build resources,
-    then loop (taking cheap jobs first with ``prefer_cheap``).  It logs at its
-    supervisor's ``log_level``, in ``DEXLAB_LOG_FORMAT`` (inherited)."""
-    configure_logging(level=log_level)
-    if liveness is not None:
-        threading.Thread(
-            target=_beat_forever, args=(liveness,), name="liveness", daemon=True
-        ).start()
-    settings = WorkerSettings.model_validate(settings_data)
-    lower_priority(settings.worker_nice, f"worker process {os.getpid()}")
-    try:
-        store = open_store(settings.resolved_store_url(), retry_s=settings.store_retry_seconds)
-    except Exception as exc:  # the supervisor backs off and says why
-        log.error("worker process %d cannot open the job store: %s", os.getpid(), exc)
-        sys.exit(EXIT_STARTUP)
-    loop = WorkerLoop(settings, store, worker_registry(), prefer_cheap=prefer_cheap)
-    signal.signal(signal.SIGTERM, lambda *_: loop.request_stop())
-    signal.signal(signal.SIGINT, signal.SIG_IGN)  # the supervisor decides when we stop
-    loop.run(parent_pid=parent_pid)

@@ -45,6 +45,7 @@ class ArtifactIndex:
 
         def _conn(self) -> Conn: ...
         def _write(self) -> AbstractContextManager[Conn]: ...
+        def _batch(self) -> AbstractContextManager[Conn]: ...
         def _exec(self, conn: Conn, query: str, params: Sequence[Any] = ()) -> Any: ...
         def _one(self, conn: Conn, query: str, params: Sequence[Any] = ()) -> Any: ...
         def _all(self, conn: Conn, query: str, params: Sequence[Any] = ()) -> list[Any]: ...
@@ -107,6 +108,65 @@ class ArtifactIndex:
         names = [checked_name(a.name) for a in artifacts]
         if len(set(names)) != len(names):
             raise ValueError(f"job {job_id} produced two artifacts with one name: {names}")
+        attempt: int | None = None
+        if artifacts:  # their bytes go first, under this attempt's number
+            stored = self._store_bytes(job_id, lease_token, artifacts)
+            if isinstance(stored, bool):
+                return stored
+            attempt = stored
+        quick, committed = self._quick_complete(job_id, lease_token, payload, artifacts)
+        if quick is not None:
+            return self._after_commit(job_id, quick, attempt if committed is None else committed)
+        now = time.time()
+        with self._batch() as conn:
+            row = self._one(
+                conn,
+                "SELECT status, process_id, started, attempts, parent_id FROM jobs "
+                f"WHERE job_id = ? AND lease_token = ?{self.lock_clause}",
+                (job_id, lease_token),
+            )
+            owner = row is not None and row["status"] in (_RUNNING, _SUCCESSFUL)
+            if owner and row["status"] == _RUNNING:
+                attempt = int(row["attempts"])
+                self._index(conn, job_id, attempt, artifacts)
+                # The token stays on the row so a retried call recognises its commit.
+                self._exec(
+                    conn,
+                    "UPDATE jobs SET result = ?, status = ?, progress = 100, finished = ?, "
+                    "updated = ?, expires = ? + retention_s, message = 'finished', "
+                    "lease_expires = NULL WHERE job_id = ?",
+                    (payload, _SUCCESSFUL, now, now, now, job_id),
+                )
+                self._tally_finish(conn, row, JobStatus.SUCCESSFUL, now)
+                if row["parent_id"] is not None:
+                    self._child_ended(conn, job_id, JobStatus.SUCCESSFUL, None, now)
+        return self._after_commit(job_id, owner, attempt)
+
+    def _quick_complete(
+        self, job_id: str, lease_token: str, payload: str, artifacts: Sequence[Artifact]
+    ) -> tuple[bool | None, int | None]:
+        """A completion in one statement where the dialect has one
+        (:mod:`worker.store.postgres_quick`): ``(outcome, attempt)``, where outcome None
+        means "take the general path"."""
+        return None, None
+
+    def _after_commit(self, job_id: str, owner: bool, attempt: int | None) -> bool:
+        """Tidy the bytes after a completion's commit: this attempt's if it no longer
+        owned the job, earlier attempts' if it succeeded."""
+        if not owner:
+            if attempt is not None:
+                self._discard_attempt(job_id, attempt)
+            return False
+        if attempt is not None and attempt > 1:  # earlier attempts may have left bytes
+            self._discard_artifact_data(job_id, keep_attempt=attempt)
+        return True
+
+    def _store_bytes(
+        self, job_id: str, lease_token: str, artifacts: Sequence[Artifact]
+    ) -> int | bool:
+        """Store the artifacts' bytes under the attempt's number, before its commit: the
+        number, or what :meth:`complete` answers now (False: the attempt no longer owns
+        the job; True: this call's own earlier try committed)."""
         row = self._one(
             self._conn(),
             "SELECT status, attempts FROM jobs WHERE job_id = ? AND lease_token = ?",
@@ -126,51 +186,24 @@ class ArtifactIndex:
                 )
                 self._discard_attempt(job_id, attempt)
                 return False
-        now = time.time()
-        with self._write() as conn:
-            row = self._one(
-                conn,
-                "SELECT status, process_id, started FROM jobs WHERE job_id = ? AND "
-                f"lease_token = ?{self.lock_clause}",
-                (job_id, lease_token),
-            )
-            owner = row is not None and row["status"] in (_RUNNING, _SUCCESSFUL)
-            if owner and row["status"] == _RUNNING:
-                self._exec(conn, "DELETE FROM artifact_index WHERE job_id = ?", (job_id,))
-                conn.cursor().executemany(
-                    self._sql(  # type: ignore[attr-defined]
-                        "INSERT INTO artifact_index (job_id, name, media_type, title, size, "
-                        "ord, attempt, etag) VALUES (?, ?, ?, ?, ?, ?, ?, ?)"
-                    ),
-                    [
-                        (
-                            job_id,
-                            a.name,
-                            a.media_type,
-                            a.title,
-                            len(a.data),
-                            i,
-                            attempt,
-                            hashlib.sha256(a.data).hexdigest(),
-                        )
-                        for i, a in enumerate(artifacts)
-                    ],
-                )
-                # The token stays on the row so a retried call recognises its commit.
-                self._exec(
-                    conn,
-                    "UPDATE jobs SET result = ?, status = ?, progress = 100, finished = ?, "
-                    "updated = ?, expires = ? + retention_s, message = 'finished', "
-                    "lease_expires = NULL WHERE job_id = ?",
-                    (payload, _SUCCESSFUL, now, now, now, job_id),
-                )
-                self._tally_finish(conn, row, JobStatus.SUCCESSFUL, now)
-                self._child_ended(conn, job_id, JobStatus.SUCCESSFUL, None, now)
-        if not owner:
-            self._discard_attempt(job_id, attempt)
-            return False
-        self._discard_artifact_data(job_id, keep_attempt=attempt)
-        return True
+        return attempt
+
+    def _index(self, conn: Conn, job_id: str, attempt: int, artifacts: Sequence[Artifact]) -> None:
+        """The index rows of a succeeding attempt's artifacts (a running job has none:
+        they come with its success)."""
+        if not artifacts:
+            return
+        conn.cursor().executemany(
+            self._sql(  # type: ignore[attr-defined]
+                "INSERT INTO artifact_index (job_id, name, media_type, title, size, "
+                "ord, attempt, etag) VALUES (?, ?, ?, ?, ?, ?, ?, ?)"
+            ),
+            [
+                (job_id, a.name, a.media_type, a.title, len(a.data), i, attempt,
+                 hashlib.sha256(a.data).hexdigest())
+                for i, a in enumerate(artifacts)
+            ],
+        )  # fmt: skip
 
     def _discard_attempt(self, job_id: str, attempt: int) -> None:
         """Remove one attempt's bytes unless the index points at them."""

@@ -260,11 +260,13 @@ class JobStore(Protocol):
         *,
         prefer_cheap: bool = False,
         max_running_per_owner: int | None = None,
+        reap: bool = True,
     ) -> Claim | None:
-        """Requeue or fail jobs whose lease expired, then claim the next accepted job in
-        fair order (:mod:`worker.store.scheduling`): the owner whose last claim is
-        oldest, then its oldest job; with ``prefer_cheap``, a cheap job if one is queued;
-        an owner with ``max_running_per_owner`` jobs running is skipped."""
+        """Requeue or fail jobs whose lease expired (unless ``reap`` is false: a worker
+        loop reaps every few seconds, not before each claim), then claim the next
+        accepted job in fair order (:mod:`worker.store.scheduling`): the owner whose last
+        claim is oldest, then its oldest job; with ``prefer_cheap``, a cheap job if one
+        is queued; an owner with ``max_running_per_owner`` jobs running is skipped."""
 
     def claim_job(
         self,

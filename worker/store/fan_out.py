@@ -52,9 +52,7 @@ class FanOut:
         def _one(self, conn: Conn, query: str, params: Sequence[Any] = ()) -> Any: ...
         def _all(self, conn: Conn, query: str, params: Sequence[Any] = ()) -> list[Any]: ...
         def _sql(self, query: str) -> str: ...
-        def _tally(
-            self, conn: Conn, process_id: str, tally: str, label: str = "", value: float = 0.0
-        ) -> None: ...
+        def _tally_all(self, conn: Conn, events: Sequence[tuple[str, str, str, float]]) -> None: ...
         def _tally_finish(self, conn: Conn, row: Row, status: JobStatus, now: float) -> None: ...
 
     @retrying
@@ -97,8 +95,7 @@ class FanOut:
                     for child_id, child in zip(ids, children, strict=True)
                 ],
             )  # fmt: skip
-            for child in children:
-                self._tally(conn, child.process_id, "submitted")
+            self._tally_all(conn, [(c.process_id, "submitted", "", 0.0) for c in children])
             self._exec(
                 conn,
                 "UPDATE jobs SET phase = 'waiting', children_total = ?, children_done = 0, "

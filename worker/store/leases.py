@@ -39,7 +39,7 @@ class Leases:
         def _job_row(self, conn: Conn, job_id: str, lock: bool = False) -> Row | None: ...
         def _record(self, conn: Conn, row: Row) -> JobRecord: ...
         def _discard_artifact_data(self, job_id: str, keep_attempt: int | None = None) -> None: ...
-        def _tally_claim(self, conn: Conn, job_id: str, now: float) -> None: ...
+        def _tally_claim(self, conn: Conn, job_id: str, now: float, row: Row = None) -> None: ...
         def _tally_finish(self, conn: Conn, row: Row, status: JobStatus, now: float) -> None: ...
         def _child_ended(
             self,
@@ -107,20 +107,24 @@ class Leases:
                 self._discard_artifact_data(job_id)
         return [j for j, status in outcomes.items() if status is JobStatus.ACCEPTED]
 
-    def _take(self, conn: Conn, job_id: str, worker_id: str, lease_s: float) -> Claim:
+    def _take(
+        self, conn: Conn, job_id: str, worker_id: str, lease_s: float, before: Row = None
+    ) -> Claim:
+        """Start an attempt on a job the transaction has locked (``before``: its row
+        with process_id, created, started and attempts, if already read)."""
         now = time.time()
         token = uuid.uuid4().hex
-        self._tally_claim(conn, job_id, now)
-        self._exec(
+        self._tally_claim(conn, job_id, now, before)
+        rows = self._all(
             conn,
             """UPDATE jobs SET status = ?, lease_token = ?, lease_expires = ?,
                    worker_id = ?, attempts = attempts + 1, attempt_started = ?,
                    started = COALESCE(started, ?), updated = ?, progress = 0,
                    message = 'running attempt ' || (attempts + 1)
-               WHERE job_id = ?""",
+               WHERE job_id = ? RETURNING *""",
             (_RUNNING, token, now + lease_s, worker_id, now, now, now, job_id),
         )
-        return Claim(self._record(conn, self._job_row(conn, job_id)), token)
+        return Claim(self._record(conn, rows[0]), token)
 
     @retrying
     def heartbeat(self, job_id: str, lease_token: str, lease_s: float) -> HeartbeatAck:

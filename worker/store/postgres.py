@@ -21,6 +21,7 @@ from typing import Any, ClassVar
 from worker.contract import JobStatus
 from worker.errors import StoreUnavailable
 from worker.store.artifact_files import CHUNK_BYTES
+from worker.store.postgres_quick import QuickStatements
 from worker.store.retry import Fault, retrying
 from worker.store.sql import SqlJobStore
 
@@ -40,7 +41,7 @@ _TRANSIENT_STATES = ("08", "40001", "40P01", "55P03", "57P01", "57P02", "57P03",
 _FULL_STATES = ("53100",)
 
 
-class PostgresJobStore(SqlJobStore):
+class PostgresJobStore(QuickStatements, SqlJobStore):
     """The job store on a PostgreSQL database (``postgresql://...``)."""
 
     lock_clause = " FOR UPDATE"
@@ -104,6 +105,12 @@ class PostgresJobStore(SqlJobStore):
     def _write(self) -> Iterator[Any]:
         conn = self._conn()
         with conn.transaction():
+            yield conn
+
+    @contextmanager
+    def _batch(self) -> Iterator[Any]:
+        conn = self._conn()
+        with conn.pipeline(), conn.transaction():
             yield conn
 
     def _lock_schema(self, conn: Any) -> None:

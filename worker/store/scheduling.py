@@ -54,11 +54,14 @@ class Scheduling:
     if TYPE_CHECKING:
 
         def _write(self) -> AbstractContextManager[Conn]: ...
+        def _batch(self) -> AbstractContextManager[Conn]: ...
         def _exec(self, conn: Conn, query: str, params: Sequence[Any] = ()) -> Any: ...
         def _one(self, conn: Conn, query: str, params: Sequence[Any] = ()) -> Any: ...
         def _all(self, conn: Conn, query: str, params: Sequence[Any] = ()) -> list[Any]: ...
         def _job_row(self, conn: Conn, job_id: str, lock: bool = False) -> Row | None: ...
-        def _take(self, conn: Conn, job_id: str, worker_id: str, lease_s: float) -> Claim: ...
+        def _take(
+            self, conn: Conn, job_id: str, worker_id: str, lease_s: float, before: Row = None
+        ) -> Claim: ...
         def _reap(self, conn: Conn, row: Row, now: float) -> JobStatus: ...
         def reap_expired(self) -> list[str]: ...
 
@@ -70,15 +73,35 @@ class Scheduling:
         *,
         prefer_cheap: bool = False,
         max_running_per_owner: int | None = None,
+        reap: bool = True,
     ) -> Claim | None:
-        self.reap_expired()
-        with self._write() as conn:
+        if reap:
+            self.reap_expired()
+        for cheap_only in (True, False) if prefer_cheap else (False,):
+            decided, claim = self._quick_claim(
+                worker_id, lease_s, cheap_only, max_running_per_owner
+            )
+            if claim is not None:
+                return claim
+            if not decided:
+                break
+        else:
+            return None
+        with self._batch() as conn:
             claim = None
             if prefer_cheap:
                 claim = self._fair_claim(conn, worker_id, lease_s, True, max_running_per_owner)
             if claim is None:
                 claim = self._fair_claim(conn, worker_id, lease_s, False, max_running_per_owner)
             return claim
+
+    def _quick_claim(
+        self, worker_id: str, lease_s: float, cheap_only: bool, max_running: int | None
+    ) -> tuple[bool, Claim | None]:
+        """A claim in one statement where the dialect has one
+        (:mod:`worker.store.postgres_quick`): ``(decided, claim)``, where undecided
+        means "take the general path"."""
+        return False, None
 
     def _fair_claim(
         self,
@@ -89,11 +112,13 @@ class Scheduling:
         max_running: int | None,
     ) -> Claim | None:
         cheap = " AND cheap = 1" if cheap_only else ""
+        # A probe per owner (LIMIT 1), not EXISTS: PostgreSQL would make that a join over
+        # every queued job, a cost that grows with the queue.
         owners = self._all(
             conn,
-            "SELECT o.owner FROM job_owners o WHERE EXISTS (SELECT 1 FROM jobs j "
-            f"WHERE j.owner = o.owner AND j.status = ?{' AND j.cheap = 1' if cheap else ''})"
-            " ORDER BY o.last_claim, o.owner",
+            "SELECT o.owner FROM job_owners o WHERE (SELECT 1 FROM jobs j "
+            f"WHERE j.owner = o.owner AND j.status = ?{' AND j.cheap = 1' if cheap else ''}"
+            " LIMIT 1) IS NOT NULL ORDER BY o.last_claim, o.owner",
             (_ACCEPTED,),
         )
         skip = " SKIP LOCKED" if self.lock_clause else ""
@@ -103,13 +128,14 @@ class Scheduling:
                 continue
             row = self._one(
                 conn,
-                f"SELECT job_id FROM jobs WHERE owner = ? AND status = ?{cheap} "
+                "SELECT job_id, process_id, created, started, attempts FROM jobs "
+                f"WHERE owner = ? AND status = ?{cheap} "
                 f"ORDER BY seq LIMIT 1{self.lock_clause}{skip}",
                 (owner, _ACCEPTED),
             )
             if row is not None:
                 self._note_claim(conn, owner)
-                return self._take(conn, row["job_id"], worker_id, lease_s)
+                return self._take(conn, row["job_id"], worker_id, lease_s, row)
         return None
 
     def _capped(self, conn: Conn, owner: str, max_running: int | None) -> bool:
@@ -158,4 +184,5 @@ class Scheduling:
             if self._capped(conn, row["owner"], max_running_per_owner):
                 return ClaimAttempt(None, status, CAPPED_RETRY_S)
             self._note_claim(conn, row["owner"])
-            return ClaimAttempt(self._take(conn, job_id, worker_id, lease_s), status, None)
+            claim = self._take(conn, job_id, worker_id, lease_s, row)
+            return ClaimAttempt(claim, status, None)

@@ -110,6 +110,13 @@ class SqlJobStore(
         """A write transaction yielding the connection."""
         raise NotImplementedError  # pragma: no cover - abstract
 
+    def _batch(self) -> AbstractContextManager[Conn]:
+        """A write transaction whose statements may travel together: each result
+        arrives when it is fetched (PostgreSQL's pipeline mode), so a statement whose
+        result is not read costs no round trip of its own.  Only for code that reads
+        nothing but fetched rows (not ``rowcount``).  Elsewhere, :meth:`_write`."""
+        return self._write()
+
     def _lock_schema(self, conn: Conn) -> None:
         """Serialise concurrent migrations (a no-op where the transaction does it)."""
 

@@ -91,33 +91,48 @@ class Tallies:
     def _tally(
         self, conn: Conn, process_id: str, tally: str, label: str = "", value: float = 0.0
     ) -> None:
+        self._tally_all(conn, [(process_id, tally, label, value)])
+
+    def _tally_all(self, conn: Conn, events: Sequence[tuple[str, str, str, float]]) -> None:
+        """Count each ``(process_id, tally, label, value)`` event, in one statement
+        (events of one row are summed first: an upsert may touch a row only once)."""
+        rows: dict[tuple[str, str, str], list[float]] = {}
+        for process_id, tally, label, value in events:
+            row = rows.setdefault((process_id, tally, label), [0, 0.0])
+            row[0] += 1
+            row[1] += value
+        if not rows:
+            return
         self._exec(
             conn,
-            "INSERT INTO job_tallies (process_id, tally, label, count, total) "
-            "VALUES (?, ?, ?, 1, ?) ON CONFLICT (process_id, tally, label) DO UPDATE SET "
-            "count = job_tallies.count + 1, total = job_tallies.total + excluded.total",
-            (process_id, tally, label, value),
+            "INSERT INTO job_tallies (process_id, tally, label, count, total) VALUES "
+            + ", ".join(["(?, ?, ?, ?, ?)"] * len(rows))
+            + " ON CONFLICT (process_id, tally, label) DO UPDATE SET "
+            "count = job_tallies.count + excluded.count, "
+            "total = job_tallies.total + excluded.total",
+            [v for key, (count, total) in rows.items() for v in (*key, int(count), total)],
         )
 
-    def _tally_claim(self, conn: Conn, job_id: str, now: float) -> None:
+    def _tally_claim(self, conn: Conn, job_id: str, now: float, row: Row = None) -> None:
         """An attempt starts (before the claim's update): attempts, retries, and the
-        queue wait at the first claim."""
-        row = self._one(
-            conn,
-            "SELECT process_id, created, started, attempts FROM jobs WHERE job_id = ?",
-            (job_id,),
-        )
+        queue wait at the first claim.  ``row`` (the job's process_id, created, started
+        and attempts) saves reading it again."""
+        if row is None:
+            row = self._one(
+                conn,
+                "SELECT process_id, created, started, attempts FROM jobs WHERE job_id = ?",
+                (job_id,),
+            )
         if row is None:
             return
         process_id = row["process_id"]
-        self._tally(conn, process_id, "attempts")
+        events = [(process_id, "attempts", "", 0.0)]
         if row["attempts"] > 0:
-            self._tally(conn, process_id, "retries")
+            events.append((process_id, "retries", "", 0.0))
         if row["started"] is None:
             wait = max(0.0, now - row["created"])
-            self._tally(
-                conn, process_id, "queue_wait", bucket_label(wait, QUEUE_WAIT_BUCKETS), wait
-            )
+            events.append((process_id, "queue_wait", bucket_label(wait, QUEUE_WAIT_BUCKETS), wait))
+        self._tally_all(conn, events)
 
     def _tally_finish(self, conn: Conn, row: Row, status: JobStatus, now: float) -> None:
         """A job reaches ``status`` (``row`` has its ``process_id`` and ``started``); a
@@ -125,12 +140,13 @@ class Tallies:
         if status is JobStatus.DISMISSED and row["status"] not in _UNFINISHED:
             return
         process_id = row["process_id"]
-        self._tally(conn, process_id, "finished", status.value)
+        events = [(process_id, "finished", status.value, 0.0)]
         if status is not JobStatus.DISMISSED and row["started"] is not None:
             seconds = max(0.0, now - row["started"])
-            self._tally(
-                conn, process_id, "duration", bucket_label(seconds, DURATION_BUCKETS), seconds
+            events.append(
+                (process_id, "duration", bucket_label(seconds, DURATION_BUCKETS), seconds)
             )
+        self._tally_all(conn, events)
 
     # -- reading ------------------------------------------------------------------------
     @retrying

@@ -6,6 +6,7 @@ real pool in tests/integration.)
 
 from __future__ import annotations
 
+import time
 from pathlib import Path
 from typing import Any
 
@@ -44,6 +45,15 @@ def run_square_against_a_paper(inputs: SquareInputs, ctx: JobContext) -> JobOutc
     )
 
 
+def run_steps(inputs: SquareInputs, ctx: JobContext) -> JobOutcome:
+    """Two steps of ``x`` seconds each, reported as they start (a long-running job)."""
+    time.sleep(inputs.x)
+    ctx.report_progress(30, "step one")
+    ctx.report_progress(60, "step two")  # within the throttle: held back
+    time.sleep(inputs.x)
+    return JobOutcome(result={"square": inputs.x**2})
+
+
 def registry() -> ProcessRegistry:
     return ProcessRegistry(
         (
@@ -53,6 +63,17 @@ def registry() -> ProcessRegistry:
                 description="x squared",
                 inputs_model=SquareInputs,
                 run=run_square,
+                examples=(),
+                outputs={"square": "x**2"},
+                cost=lambda _: 1,
+                cost_limit=10,
+            ),
+            ProcessDefinition(
+                id="steps",
+                title="Two timed steps",
+                description="sleeps x seconds twice, reporting each step",
+                inputs_model=SquareInputs,
+                run=run_steps,
                 examples=(),
                 outputs={"square": "x**2"},
                 cost=lambda _: 1,

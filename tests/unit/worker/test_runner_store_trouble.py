@@ -11,10 +11,11 @@ from typing import Any
 import pytest
 
 from tests.unit.worker.test_runner import registry
+from worker.attempt_guard import AttemptGuard
 from worker.contract import Artifact, JobStatus
 from worker.errors import StorageFull, StoreUnavailable
 from worker.result_commit import commit_outcome
-from worker.runner import AttemptGuard, WorkerLoop
+from worker.runner import WorkerLoop
 from worker.settings import WorkerSettings
 from worker.store import open_store
 from worker.store.base import JobStore, NewJob
@@ -64,7 +65,8 @@ def submit_square(store: JobStore, x: float = 3.0) -> str:
 
 
 def test_progress_writes_that_fail_never_fail_the_job(store: JobStore) -> None:
-    job_id = submit_square(store)
+    job, _ = store.create_job(NewJob("steps", {"x": 0.3}, time_limit_s=30, max_attempts=2))
+    job_id = job.job_id
     troubled = TroubledStore(store, StoreUnavailable("locked"), {"report_progress"})
     loop = WorkerLoop(WorkerSettings(workers=1), troubled, registry())  # type: ignore[arg-type]
     claim = store.claim_next(loop.worker_id, 10)
@@ -83,8 +85,8 @@ def test_the_guard_survives_store_errors_and_keeps_renewing(store: JobStore) -> 
         store, StoreUnavailable("down"), {"heartbeat", "worker_heartbeat"}, times=3
     )
     settings = WorkerSettings(workers=1, heartbeat_seconds=0.1, lease_seconds=1.0)
-    guard = AttemptGuard(troubled, claim, settings, "w", time.time() + 60)  # type: ignore[arg-type]
-    guard.start()
+    guard = AttemptGuard(troubled, settings, "w")  # type: ignore[arg-type]
+    guard.watch(claim, time.time() + 60)
     try:
         time.sleep(1.5)  # > the lease: only renewals after the errors keep it alive
         assert guard.is_alive()
@@ -93,8 +95,7 @@ def test_the_guard_survives_store_errors_and_keeps_renewing(store: JobStore) -> 
         job = store.get_job(job_id)
         assert job is not None and job.status is JobStatus.RUNNING
     finally:
-        guard.stop()
-        guard.join(5)
+        guard.release()
 
 
 def test_a_commit_waits_out_a_store_outage(store: JobStore) -> None:
@@ -163,3 +164,64 @@ def test_the_worker_loop_rides_out_an_unavailable_store(store: JobStore) -> None
     job = store.get_job(job_id)
     assert job is not None and job.status is JobStatus.SUCCESSFUL
     assert troubled.calls["claim_next"] >= 2
+
+
+class SlowCommits:
+    """The real store, whose commits take ``delay_s`` (a slow disk)."""
+
+    def __init__(self, store: JobStore, delay_s: float) -> None:
+        self._store = store
+        self._delay_s = delay_s
+        self.committing = threading.Event()
+
+    def __getattr__(self, name: str) -> Any:
+        return getattr(self._store, name)
+
+    def complete(self, *args: Any, **kwargs: Any) -> bool:
+        self.committing.set()
+        time.sleep(self._delay_s)
+        return bool(self._store.complete(*args, **kwargs))
+
+
+def test_a_commit_behind_keeps_the_lease_and_the_next_claim_waits_for_it(
+    store: JobStore,
+) -> None:
+    """With ``commit_behind`` (Celery) execute returns before the commit; the lease is
+    renewed meanwhile, and the next claim sees the job committed."""
+    first, second = submit_square(store, 2.0), submit_square(store, 3.0)
+    slow = SlowCommits(store, delay_s=1.5)
+    settings = WorkerSettings(workers=1, heartbeat_seconds=0.1, lease_seconds=0.5)
+    loop = WorkerLoop(settings, slow, registry(), commit_behind=True)  # type: ignore[arg-type]
+    claim = loop.claim()
+    assert claim is not None and claim.job.job_id == first
+    started = time.monotonic()
+    loop.execute(claim)
+    assert time.monotonic() - started < 1.0  # returned while the commit runs
+    assert slow.committing.wait(5)
+    time.sleep(0.8)  # past the lease: only renewals keep the job
+    assert store.reap_expired() == []
+    following = loop.claim()  # waits for the commit first
+    done = store.get_job(first)
+    assert done is not None and done.status is JobStatus.SUCCESSFUL
+    assert following is not None and following.job.job_id == second
+    loop.execute(following)
+    loop.settle()
+    assert store.get_result(second) == {"square": 9.0, "notes": ["a note"], "paper_errata": []}
+
+
+def test_a_commit_behind_that_fails_is_logged_and_leaves_the_job_to_a_retry(
+    store: JobStore, caplog: pytest.LogCaptureFixture
+) -> None:
+    job_id = submit_square(store)
+    troubled = TroubledStore(store, RuntimeError("the disk went away"), {"complete"})
+    settings = WorkerSettings(workers=1, lease_seconds=1.0)
+    loop = WorkerLoop(settings, troubled, registry(), commit_behind=True)  # type: ignore[arg-type]
+    claim = loop.claim()
+    assert claim is not None
+    loop.execute(claim)
+    loop.settle()  # does not raise
+    assert "could not be committed" in caplog.text
+    job = store.get_job(job_id)
+    assert job is not None and job.status is JobStatus.RUNNING  # its lease will lapse
+    time.sleep(1.2)
+    assert store.reap_expired() == [job_id]

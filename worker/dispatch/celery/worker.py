@@ -11,6 +11,14 @@ and for Celery.  Messages stay one per job, so there is always a message for eac
 queued job: a claim uses one message and one job, and a message that finds nothing
 to claim is dropped.
 
+**A delivery returns once its job's work is done.**  The outcome is committed on a
+thread of the pool process (``commit_behind``, :class:`worker.runner.WorkerLoop`) while
+Celery acknowledges the message and hands the process its next one; the next claim,
+and the process's shutdown, wait for it.  The lease is renewed until the commit is
+made, so a process that dies in between leaves a job that is retried as always (its
+lease lapses and the sweeper sends it again): the acknowledgement was never what kept
+a job, the store is.
+
 When nothing is claimable, the delivered job itself decides: held by another
 attempt's live lease (its process may have just died), the task is retried once the
 lease can have expired; waiting behind its owner's running cap, it is retried shortly;
@@ -39,9 +47,10 @@ from worker.contract import JobStatus
 from worker.dispatch.celery.app import create_celery_app
 from worker.dispatch.celery.dispatch import CeleryDispatch, Sweeper
 from worker.logs import log_context, stdout_as_log_lines
+from worker.pool_process import lower_priority
 from worker.processes import worker_registry
 from worker.retention import RetentionSweeper
-from worker.runner import WorkerLoop, lower_priority, worker_id_for
+from worker.runner import WorkerLoop, worker_id_for
 from worker.settings import WorkerSettings
 from worker.store import open_store
 
@@ -65,7 +74,12 @@ def _loop_for_this_process(app: Celery) -> WorkerLoop:
         cheap = current_process_index(base=0) == 0
         sender = _Sender(settings, store)
         loop = WorkerLoop(
-            settings, store, worker_registry(), prefer_cheap=cheap, on_queued=sender.send
+            settings,
+            store,
+            worker_registry(),
+            prefer_cheap=cheap,
+            on_queued=sender.send,
+            commit_behind=True,
         )
         runtime = _ProcessRuntime(os.getpid(), loop)
         app.dexlab_runtime = runtime
@@ -129,6 +143,14 @@ def _run_delivered_job(app: Celery, job_id: str) -> float | None:
     return None
 
 
+def _settle_at_exit(app: Celery) -> None:
+    """Celery's ``worker_process_shutdown`` in a pool process: the outcome still being
+    committed is committed before the process exits."""
+    runtime: _ProcessRuntime | None = getattr(app, "dexlab_runtime", None)
+    if runtime is not None and runtime.pid == os.getpid():
+        runtime.loop.settle()
+
+
 def _logging_is_set_up(**_: Any) -> None:
     """Celery's ``setup_logging`` signal: with a receiver, Celery leaves logging alone."""
 
@@ -148,6 +170,9 @@ def run_celery_worker(
     lower_priority(settings.worker_nice, f"Celery worker {os.getpid()} and its processes")
     store = open_store(settings.resolved_store_url(), retry_s=settings.store_retry_seconds)
     app = create_celery_app(settings)
+    signals.worker_process_shutdown.connect(
+        lambda **_: _settle_at_exit(app), weak=False, dispatch_uid="dexlab-settle"
+    )
     dispatcher = CeleryDispatch(settings, store)
     worker_id = worker_id_for(os.getpid())
     store.register_worker(worker_id, socket.gethostname(), os.getpid())

@@ -285,10 +285,12 @@ def chain_components(
 
 
 def inverse_condition_of_components(first: tuple[Any, ...], second: tuple[Any, ...]) -> Any:
-    """1/kappa from :func:`chain_components` (junk where not reachable)."""
-    c = first[2] * second[2] + first[3] * second[3]
-    s = first[2] * second[3] - first[3] * second[2]
-    return inverse_condition_from_terms(first[1], second[1], c, s)
+    """1/kappa from :func:`chain_components` (junk where not reachable: the junk may
+    overflow or be undefined, and is masked by the caller, so it raises no warning)."""
+    with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
+        c = first[2] * second[2] + first[3] * second[3]
+        s = first[2] * second[3] - first[3] * second[2]
+        return inverse_condition_from_terms(first[1], second[1], c, s)
 
 
 def joints_of_components(actuation: str, chains: tuple[tuple[Any, ...], ...]) -> list[Any]:

@@ -1,0 +1,84 @@
+"""The entry point of a local pool's worker process, and the lower scheduling priority
+every worker process runs at.
+
+Worker processes run at a lower scheduling priority than the API
+(:func:`lower_priority`), so requests stay quick while every core runs jobs.  A pool
+process tells its supervisor that it is alive twice a second from a thread of its own,
+whatever the job does, so a frozen (e.g. SIGSTOPped) process is found and killed.
+"""
+
+from __future__ import annotations
+
+import logging
+import os
+import signal
+import sys
+import threading
+import time
+from typing import Any
+
+from worker.logs import configure_logging
+from worker.processes import worker_registry
+from worker.runner import WorkerLoop
+from worker.settings import WorkerSettings
+from worker.store import open_store
+
+__all__ = ["EXIT_STARTUP", "lower_priority", "worker_main"]
+
+log = logging.getLogger("dexlab.worker")
+
+
+#: Exit code of a worker process that could not start (e.g. the store cannot be opened).
+EXIT_STARTUP = 6
+
+
+def _beat_forever(liveness: Any) -> None:
+    """Tell the supervisor this process runs, twice a second, whatever the job does (a
+    frozen, e.g. SIGSTOPped, process stops beating and is killed)."""
+    while True:
+        liveness.value = time.time()
+        time.sleep(0.5)
+
+
+def lower_priority(increment: int, what: str) -> int:
+    """Lower this process's scheduling priority by ``increment`` (``os.nice``), log it
+    for ``what`` (e.g. "worker process 12"), and return the niceness it now has."""
+    before = os.nice(0)
+    now = os.nice(increment) if increment else before
+    log.info(
+        "%s runs at niceness %d (DEXLAB_WORKER_NICE=%d above the %d it started with), "
+        "so the API comes first",
+        what,
+        now,
+        increment,
+        before,
+    )
+    return now
+
+
+def worker_main(
+    settings_data: dict[str, Any],
+    parent_pid: int | None = None,
+    liveness: Any = None,
+    log_level: int = logging.INFO,
+    prefer_cheap: bool = False,
+) -> None:
+    """Entry point of a pool process (spawned): lower its priority, build resources,
+    then loop (taking cheap jobs first with ``prefer_cheap``).  It logs at its
+    supervisor's ``log_level``, in ``DEXLAB_LOG_FORMAT`` (inherited)."""
+    configure_logging(level=log_level)
+    if liveness is not None:
+        threading.Thread(
+            target=_beat_forever, args=(liveness,), name="liveness", daemon=True
+        ).start()
+    settings = WorkerSettings.model_validate(settings_data)
+    lower_priority(settings.worker_nice, f"worker process {os.getpid()}")
+    try:
+        store = open_store(settings.resolved_store_url(), retry_s=settings.store_retry_seconds)
+    except Exception as exc:  # the supervisor backs off and says why
+        log.error("worker process %d cannot open the job store: %s", os.getpid(), exc)
+        sys.exit(EXIT_STARTUP)
+    loop = WorkerLoop(settings, store, worker_registry(), prefer_cheap=prefer_cheap)
+    signal.signal(signal.SIGTERM, lambda *_: loop.request_stop())
+    signal.signal(signal.SIGINT, signal.SIG_IGN)  # the supervisor decides when we stop
+    loop.run(parent_pid=parent_pid)
