@@ -20,6 +20,7 @@ from worker.contract import ChildEnd, JobContext, JobOutcome
 __all__ = [
     "ChildResults",
     "FanOutSteps",
+    "PaperPoint",
     "ProcessDefinition",
     "ProcessExample",
     "ProcessFile",
@@ -80,6 +81,18 @@ ChildResults = Iterable[tuple[ChildEnd, Mapping[str, Any] | None]]
 
 
 @dataclass(frozen=True)
+class PaperPoint:
+    """A design a paper reports for this process (its optimum, typically), as input
+    paths and values (``{"alpha1_deg": 60, "workspace.tilt_max_deg": 60}``): a design
+    study marks it on its plots when the study contains it (its varied inputs are
+    among these paths, within the study's bounds, and the other paths equal the
+    study's inputs)."""
+
+    label: str
+    inputs: Mapping[str, Any]
+
+
+@dataclass(frozen=True)
 class FanOutSteps:
     """A process that fans out over the workers (``design-study``): its first attempt
     ``split``s the validated inputs into the inputs of ``child_process`` jobs, which run
@@ -128,6 +141,8 @@ class ProcessDefinition:
     #: Checks beyond the input model, made at submission (before anything is queued):
     #: field errors ``{"field", "message", "type"}`` for a 422; None: none.
     precheck: Callable[[Any], list[dict[str, Any]]] | None = None
+    #: Designs the paper reports, which a design study over this process marks.
+    paper_points: tuple[PaperPoint, ...] = ()
 
     @cached_property
     def inputs_schema(self) -> dict[str, Any]:

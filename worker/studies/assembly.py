@@ -21,7 +21,7 @@ from worker.contract import ChildEnd
 from worker.studies.pareto import non_dominated
 from worker.studies.spec import StudySpec
 
-__all__ = ["MAX_LISTED", "StudyTable", "collect", "summary"]
+__all__ = ["MAX_LISTED", "StudyTable", "collect", "entry", "pareto_rows", "summary"]
 
 #: Most designs a result document lists in ``pareto`` (the data files hold them all).
 MAX_LISTED = 1000
@@ -74,7 +74,8 @@ def collect(
     )
 
 
-def _entry(spec: StudySpec, table: StudyTable, row: int) -> dict[str, Any]:
+def entry(spec: StudySpec, table: StudyTable, row: int) -> dict[str, Any]:
+    """One design as the result lists it: its index, parameters and objectives."""
     values = table.objectives[row]
     return {
         "index": int(table.index[row]),
@@ -123,9 +124,9 @@ def summary(spec: StudySpec, table: StudyTable) -> dict[str, Any]:
         "parameters": list(spec.designs.names),
         "objectives": dict(spec.objectives),
         "pareto_size": int(front.size),
-        "pareto": [_entry(spec, table, int(row)) for row in front[:MAX_LISTED]],
+        "pareto": [entry(spec, table, int(row)) for row in front[:MAX_LISTED]],
         "best": {
-            name: [_entry(spec, table, row) for row in rows]
+            name: [entry(spec, table, row) for row in rows]
             for name, rows in best_rows(spec, table).items()
         },
     }

@@ -9,10 +9,17 @@ import numpy as np
 from worker.common.figures import figure_artifacts
 from worker.contract import Artifact, JobContext, JobOutcome
 from worker.processes import ChildResults, ProcessDefinition
-from worker.studies.assembly import StudyTable, collect, pareto_rows, summary
+from worker.studies.assembly import StudyTable, collect, entry, pareto_rows, summary
 from worker.studies.designs import GridSpace
-from worker.studies.figures import code, objective_maps_figure, pareto_figure
+from worker.studies.figures import (
+    Marker,
+    code,
+    objective_maps_figure,
+    objective_slices_figure,
+    pareto_figure,
+)
 from worker.studies.files import AS_REPORTED, designs_csv, designs_npz, parameter_unit
+from worker.studies.paper_points import PaperMark, paper_marks
 from worker.studies.spec import StudySpec
 
 __all__ = ["study_outcome"]
@@ -32,7 +39,9 @@ def study_outcome(spec: StudySpec, children: ChildResults, ctx: JobContext) -> J
             yield item
 
     table = collect(spec, counting(children))
+    marks = paper_marks(spec, process)
     result: dict[str, Any] = {"process": spec.process, **summary(spec, table),
+                              "paper_points": _paper_points(spec, table, marks),
                               "chunks": len(counted)}  # fmt: skip
     ctx.report_progress(95.0, "data files and figures")
     artifacts: tuple[Artifact, ...] = (
@@ -40,32 +49,69 @@ def study_outcome(spec: StudySpec, children: ChildResults, ctx: JobContext) -> J
         designs_npz(spec, process, table),
     )
     if spec.plots:
-        artifacts += _figures(spec, process, table)
+        artifacts += _figures(spec, process, table, marks)
     return JobOutcome(result=result, artifacts=artifacts, notes=tuple(_notes(result)))
 
 
+def _table_row(table: StudyTable, design: int | None) -> int | None:
+    """The table's row of a design index, if it was evaluated."""
+    if design is None:
+        return None
+    row = int(np.searchsorted(table.index, design))
+    return row if row < table.index.size and int(table.index[row]) == design else None
+
+
+def _paper_points(
+    spec: StudySpec, table: StudyTable, marks: list[PaperMark]
+) -> list[dict[str, Any]]:
+    """The paper's designs in the study, with the study's own design there if any."""
+    points = []
+    for mark in marks:
+        row = _table_row(table, mark.row)
+        points.append({
+            "label": mark.label,
+            "parameters": dict(zip(spec.designs.names, mark.parameters, strict=True)),
+            "design": None if row is None else entry(spec, table, row),
+        })  # fmt: skip
+    return points
+
+
+def _markers(
+    spec: StudySpec, table: StudyTable, marks: list[PaperMark], axes: list[int]
+) -> list[Marker]:
+    markers = []
+    for mark in marks:
+        row = _table_row(table, mark.row)
+        values = None if row is None else tuple(table.objectives[row].tolist())
+        markers.append(Marker(mark.label, tuple(mark.parameters[a] for a in axes), values))
+    return markers
+
+
 def _figures(
-    spec: StudySpec, process: ProcessDefinition, table: StudyTable
+    spec: StudySpec, process: ProcessDefinition, table: StudyTable, marks: list[PaperMark]
 ) -> tuple[Artifact, ...]:
     labels = [f"{code(name)} [{AS_REPORTED}]" for name in spec.objectives]
     out: tuple[Artifact, ...] = ()
     space = spec.designs
     axes = [a for a in space.axes if a[3] > 1] if isinstance(space, GridSpace) else []
-    if isinstance(space, GridSpace) and 1 <= len(axes) <= 2 and table.index.size == space.count:
+    values = np.where(table.feasible[:, None], table.objectives, np.nan)
+    if isinstance(space, GridSpace) and 1 <= len(axes) <= 3 and table.index.size == space.count:
         positions = [space.names.index(a[0]) for a in axes]
         shape = tuple(a[3] for a in axes)
-        values = np.where(table.feasible[:, None], table.objectives, np.nan)
         maps = [values[:, k].reshape(shape) for k in range(values.shape[1])]
         axes_labels = [f"{code(a[0])} [{parameter_unit(process, a[0], spec.fixed)}]" for a in axes]
         values_of_axes = [space.values(position) for position in positions]
+        markers = _markers(spec, table, marks, positions)
         title = f"Design study of {spec.process}"
-        fig = objective_maps_figure(values_of_axes, axes_labels, maps, labels, title)
+        draw = objective_slices_figure if len(axes) == 3 else objective_maps_figure
+        fig = draw(values_of_axes, axes_labels, maps, labels, title, markers)
         out += figure_artifacts(fig, "objective_maps", "Each objective over the varied inputs")
     if len(spec.objectives) >= 2:
         front = pareto_rows(spec, table)
-        values = np.where(table.feasible[:, None], table.objectives, np.nan)
+        markers = _markers(spec, table, marks, list(range(len(space.names))))
         fig = pareto_figure(values, front, labels, list(spec.objectives.values()),
-                            f"Design study of {spec.process}: objective space")  # fmt: skip
+                            f"Design study of {spec.process}: objective space",
+                            markers)  # fmt: skip
         out += figure_artifacts(fig, "pareto", "The objectives and the non-dominated designs")
     return out
 
@@ -73,7 +119,8 @@ def _figures(
 def _notes(result: dict[str, Any]) -> list[str]:
     notes = [
         f"{result['feasible']:,} of {result['count']:,} designs are feasible; "
-        f"{result['pareto_size']:,} are non-dominated."
+        f"{result['pareto_size']:,} {'is' if result['pareto_size'] == 1 else 'are'} "
+        "non-dominated."
     ]
     if result["infeasible_reasons"]:
         top = result["infeasible_reasons"][0]

@@ -158,6 +158,65 @@ def run_in_process(spec: StudySpec, ctx: JobContext) -> JobOutcome:
 _LIMITS = [[-150, 150], [-150, 150], [-175, 175]]
 _EXAMPLES = (
     ProcessExample(
+        title="SPM: C_n over (alpha1, alpha2) at beta = 90 deg, Table 1's optimum marked",
+        inputs=MappingProxyType(
+            {
+                "process": "spm-conditioning-map",
+                "fixed": {
+                    "beta_deg": 90,
+                    "gamma_deg": 0,
+                    "workspace": {"tilt_max_deg": 60, "torsion_deg": [0, 360]},
+                },
+                "vary": {"alpha1_deg": [30, 150, 13], "alpha2_deg": [30, 150, 13]},
+                "objectives": {
+                    "indices.rms_inverse_condition": "max",
+                    "indices.min_inverse_condition": "max",
+                },
+            }
+        ),
+        description="Bai's Example I (a 120 deg cone, a full turn, beta = 90 deg): C_n (eq 25) "
+        "and the worst 1/kappa of 169 designs on a 10 deg grid, as heat maps with Table 1's "
+        "optimum (60, 90) and its twin (120, 90) marked. The two are the study's best, C_n "
+        "0.5453 (the paper prints its square, 0.28 for 0.2974); grey designs leave some of "
+        "the cone unreachable or singular.",
+    ),
+    ProcessExample(
+        title="Five-bar: eta over delta through planar2dof-optimisation, Table I's delta marked",
+        inputs=MappingProxyType(
+            {
+                "process": "planar2dof-optimisation",
+                "fixed": {"inverse_condition_limit": 0.526, "aspect_ratio": 4},
+                "vary": {"delta": [1.5, 1.9, 5]},
+                "objectives": {"optimum.eta": "max", "optimum.S": "max"},
+            }
+        ),
+        description="Huang et al.'s proximal-arm five-bar at 1/kappa0 = 0.526 and lambda = 4: "
+        "the global index eta and the rectangle's area S at five deltas around Table I's "
+        "delta = 1.7 (marked), each the optimisation process's own numbers.",
+    ),
+    ProcessExample(
+        title="Chains: Fig 2d's place among the Fig 2 quadrangles as one link's length varies",
+        inputs=MappingProxyType(
+            {
+                "process": "chain-parallelism",
+                "fixed": {
+                    "chains": [
+                        {"name": "Fig 2a", "lengths": [15, 15, 15, 15]},
+                        {"name": "Fig 2b", "lengths": [20, 10, 20, 10]},
+                        {"name": "Fig 2c", "lengths": [20, 20, 10, 10]},
+                        {"name": "Fig 2d", "lengths": [18, 15, 10, 17]},
+                        {"name": "Fig 2e", "lengths": [18, 10, 17, 15]},
+                    ],
+                    "length_unit": "cm",
+                },
+                "vary": {"chains[3].lengths[2]": [6, 24, 19]},
+                "objectives": {"chains[3].rank.by_Q": "min", "chains[3].Q_normalized": "min"},
+            }
+        ),
+        description="The five quadrangles of the paper's Fig 2 with Fig 2d's third link from "
+        "6 to 24 cm: where Fig 2d ranks by Q among them, and its normalised Q.",
+    ),
+    ProcessExample(
         title="3R arm: worst task-point d_z and total length over (l1, l2)",
         inputs=MappingProxyType(
             {
@@ -243,6 +302,8 @@ STUDY = ProcessDefinition(
         "pareto_size": "How many designs are non-dominated.",
         "pareto": "The non-dominated designs (at most 1000 listed): index, parameters, objectives.",
         "best": "Per objective, the best designs (best_count).",
+        "paper_points": "The designs the process's paper reports that the study contains "
+        "(marked on the plots), each with the study's design there if it evaluated it.",
         "chunks": "How many chunks ran.",
     },
     cost=study_cost,

@@ -47,6 +47,20 @@ VARIANTS: dict[str, list[dict[str, Any]]] = {
         {"l1": 2, "l2": 1, "e": 0.5, "working_mode": [1, 1], "grid": {"points_per_axis": 61}},
     ],
     "fourbar-grashof": [{"lengths": [4, 4, 4, 4], "ground": 0}],
+    "design-study": [  # three varied inputs: small multiples, 7 of 9 slices shown as 6
+        {"process": "chain-parallelism",
+         "fixed": {"chains": [{"name": "A", "lengths": [15, 15, 15, 15]},
+                              {"name": "B", "lengths": [18, 15, 10, 17]}]},
+         "vary": {"chains[1].lengths[0]": [10, 20, 6], "chains[1].lengths[1]": [10, 20, 6],
+                  "chains[1].lengths[2]": [6, 14, 9]},
+         "objectives": {"chains[1].Q_normalized": "min", "chains[1].P_normalized": "max"}},
+        {"process": "spm-conditioning-map",  # Table 1's optimum on the beta = 90 slice
+         "fixed": {"gamma_deg": 0, "workspace": {"tilt_max_deg": 60, "torsion_deg": [0, 360],
+                   "samples": {"azimuth": 4, "tilt": 2, "torsion": 2}}},
+         "vary": {"alpha1_deg": [50, 70, 3], "alpha2_deg": [80, 100, 3],
+                  "beta_deg": [80, 90, 2]},
+         "objectives": {"indices.rms_inverse_condition": "max"}},
+    ],
 }  # fmt: skip
 
 

@@ -79,7 +79,8 @@ CHAIN_PARALLELISM = ProcessDefinition(
         "total_length, P, P_normalized, loops (index, peripheral, sides, lengths, products "
         "[product k joins sides k and k+1], deviations [one per side], Q), Q, Q_normalized, "
         "and for a single loop its arrangements (count, given_rank, most_parallel, ranked: "
-        "rank, sides, lengths, Q, given); null otherwise.",
+        "rank, sides, lengths, Q, given); null otherwise; rank (by_P, by_Q: its place in "
+        "the rankings below, 1 first, ties sharing a rank).",
         "ranking": "by_P (P_normalized, largest first) and by_Q (Q, or Q_normalized when the "
         "chains' total lengths differ; smallest first): measure, order [rank, name, value] "
         "with ties sharing a rank, and the paper's reading.",

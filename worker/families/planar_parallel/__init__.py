@@ -27,6 +27,7 @@ from worker.families.planar_parallel.costs import (
 from worker.families.planar_parallel.examples import (
     CONDITIONING_MAP_EXAMPLES,
     OPTIMISATION_EXAMPLES,
+    OPTIMISATION_PAPER_POINTS,
 )
 from worker.families.planar_parallel.specs import ConditioningMapSpec, OptimisationSpec
 from worker.processes import ProcessDefinition, ProcessFile, data_files, figure_files
@@ -103,6 +104,7 @@ CONDITIONING_MAP = ProcessDefinition(
 
 OPTIMISATION = ProcessDefinition(
     id="planar2dof-optimisation",
+    paper_points=OPTIMISATION_PAPER_POINTS,
     title="2-DOF planar parallel robot: optimum design (proximal arms)",
     method_doc="planar-parallel",
     files=(

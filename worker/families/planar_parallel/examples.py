@@ -10,13 +10,14 @@ from __future__ import annotations
 from dataclasses import dataclass
 from types import MappingProxyType
 
-from worker.processes import ProcessExample
+from worker.processes import PaperPoint, ProcessExample
 
 __all__ = [
     "CONDITIONING_MAP_EXAMPLES",
     "FIG_4_DELTAS",
     "FIG_4_LIMIT",
     "OPTIMISATION_EXAMPLES",
+    "OPTIMISATION_PAPER_POINTS",
     "PAPER_ASPECT_RATIO",
     "TABLE_I",
     "TableIColumn",
@@ -154,4 +155,19 @@ OPTIMISATION_EXAMPLES = (
         )
         for column in TABLE_I
     ),
+)
+
+
+#: Table I's optima (delta at each printed 1/kappa0, lambda = 4), which a design study
+#: of planar2dof-optimisation over delta marks.
+OPTIMISATION_PAPER_POINTS = tuple(
+    PaperPoint(
+        label=f"Table I, [β] = {c.allowable_pressure_angle_deg:g}°: δ = {c.delta:g}",
+        inputs={
+            "delta": c.delta,
+            "inverse_condition_limit": c.inverse_condition_limit,
+            "aspect_ratio": PAPER_ASPECT_RATIO,
+        },
+    )
+    for c in TABLE_I
 )

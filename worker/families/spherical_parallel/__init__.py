@@ -35,6 +35,7 @@ from worker.families.spherical_parallel.costs import (
 )
 from worker.families.spherical_parallel.examples import (
     CONDITIONING_MAP_EXAMPLES,
+    CONDITIONING_MAP_PAPER_POINTS,
     DESIGN_SPACE_EXAMPLES,
     OPTIMISATION_EXAMPLES,
 )
@@ -82,6 +83,7 @@ _INDICES = (
 
 CONDITIONING_MAP = ProcessDefinition(
     id="spm-conditioning-map",
+    paper_points=CONDITIONING_MAP_PAPER_POINTS,
     title="Spherical parallel manipulator: conditioning over a workspace",
     method_doc="spherical-parallel",
     files=(

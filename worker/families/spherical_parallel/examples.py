@@ -13,10 +13,11 @@ from dataclasses import dataclass
 from types import MappingProxyType
 from typing import Any
 
-from worker.processes import ProcessExample
+from worker.processes import PaperPoint, ProcessExample
 
 __all__ = [
     "CONDITIONING_MAP_EXAMPLES",
+    "CONDITIONING_MAP_PAPER_POINTS",
     "DESIGN_SPACE_EXAMPLES",
     "EXAMPLE_1_WORKSPACE",
     "EXAMPLE_2_WORKSPACE",
@@ -177,4 +178,28 @@ OPTIMISATION_EXAMPLES = (
         description="Only the link angles free: about (58.1, 113.4) or (121.9, 66.6), "
         "mean(1/kappa^2) 0.582, next to the printed design's 0.579.",
     ),
+)
+
+
+def _paper_point(design: PaperDesign, workspace: dict[str, Any], what: str) -> PaperPoint:
+    conditions = {"workspace.tilt_max_deg": workspace["tilt_max_deg"],
+                  "workspace.torsion_deg": workspace["torsion_deg"]}  # fmt: skip
+    return PaperPoint(
+        label=f"{design.label} {what} ({design.alpha1_deg:g}°, {design.alpha2_deg:g}°)",
+        inputs={**design.inputs(), **conditions},
+    )
+
+
+#: The designs of Tables 1-3 over their examples' workspaces (Table 1's optimum also as
+#: its printed twin, alpha1 = 120), which a design study of spm-conditioning-map marks.
+CONDITIONING_MAP_PAPER_POINTS = (
+    _paper_point(TABLE_1, EXAMPLE_1_WORKSPACE, "optimum"),
+    _paper_point(
+        PaperDesign("Table 1", TABLE_1_TWIN_ALPHA1_DEG, 90.0, 90.0, 0.0, TABLE_1.printed),
+        EXAMPLE_1_WORKSPACE,
+        "optimum's twin",
+    ),
+    _paper_point(TABLE_2_NUMERICAL, EXAMPLE_2_WORKSPACE, "design"),
+    _paper_point(TABLE_2_GRAPHIC, EXAMPLE_2_WORKSPACE, "design"),
+    _paper_point(TABLE_3, EXAMPLE_3_WORKSPACE, "optimum"),
 )

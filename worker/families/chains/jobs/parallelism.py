@@ -50,6 +50,8 @@ def run_chain_parallelism(spec: ChainParallelismSpec, ctx: JobContext) -> JobOut
         for chain, s in zip(spec.chains, structures, strict=True)
     ]
     ranking = rankings(entries)
+    for entry, by_p, by_q in zip(entries, *_ranks(entries, ranking), strict=True):
+        entry["rank"] = {"by_P": by_p, "by_Q": by_q}
     result: dict[str, Any] = {
         "chains": entries,
         "ranking": ranking,
@@ -159,6 +161,16 @@ def _standing(order: list[dict[str, Any]], best: str, worst: str) -> str:
 
 def _names(names: list[str]) -> str:
     return ", ".join(names) + (" (tied)" if len(names) > 1 else "")
+
+
+def _ranks(entries: list[dict[str, Any]], ranking: dict[str, Any]) -> tuple[list[int], ...]:
+    """Each chain's rank by P and by Q, in the order given (ties share a rank)."""
+    out = []
+    for key, descending in (("by_P", True), ("by_Q", False)):
+        values = [entry[ranking[key]["measure"]] for entry in entries]
+        _, ranks = chains.tie_ranks(values, descending=descending)
+        out.append([int(r) for r in ranks])
+    return tuple(out)
 
 
 def rankings(entries: list[dict[str, Any]]) -> dict[str, Any]:

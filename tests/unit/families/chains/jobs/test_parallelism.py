@@ -17,6 +17,7 @@ from worker.families.chains.specs import ChainParallelismSpec
 CHAIN_KEYS = {
     "name", "form", "links", "joints", "independent_loops", "mobility", "dimensions",
     "total_length", "P", "P_normalized", "loops", "Q", "Q_normalized", "arrangements",
+    "rank",
 }  # fmt: skip
 LOOP_KEYS = {"index", "peripheral", "sides", "lengths", "products", "deviations", "Q"}
 
@@ -57,6 +58,14 @@ def test_result_is_json_and_complete() -> None:
     ]  # fmt: skip
     assert ctx.percents[0] == 0.0 and ctx.percents[-1] == 100.0
     assert ctx.percents == sorted(ctx.percents)
+
+
+def test_each_chain_carries_its_place_in_both_rankings() -> None:
+    outcome = run_example(0)
+    for key in ("by_P", "by_Q"):
+        places = {e["name"]: e["rank"] for e in outcome.result["ranking"][key]["order"]}
+        assert {e["name"]: e["rank"][key] for e in outcome.result["chains"]} == places
+    assert by_name(outcome)["Fig 2d"]["rank"] == {"by_P": 2, "by_Q": 4}
 
 
 def test_fig_2_numbers_and_rankings() -> None:
