@@ -189,16 +189,16 @@ def test_a_commit_behind_keeps_the_lease_and_the_next_claim_waits_for_it(
     """With ``commit_behind`` (Celery) execute returns before the commit; the lease is
     renewed meanwhile, and the next claim sees the job committed."""
     first, second = submit_square(store, 2.0), submit_square(store, 3.0)
-    slow = SlowCommits(store, delay_s=1.5)
-    settings = WorkerSettings(workers=1, heartbeat_seconds=0.1, lease_seconds=0.5)
+    slow = SlowCommits(store, delay_s=2.5)
+    settings = WorkerSettings(workers=1, heartbeat_seconds=0.1, lease_seconds=1.0)
     loop = WorkerLoop(settings, slow, registry(), commit_behind=True)  # type: ignore[arg-type]
     claim = loop.claim()
     assert claim is not None and claim.job.job_id == first
     started = time.monotonic()
     loop.execute(claim)
-    assert time.monotonic() - started < 1.0  # returned while the commit runs
+    assert time.monotonic() - started < 2.0  # returned while the commit runs
     assert slow.committing.wait(5)
-    time.sleep(0.8)  # past the lease: only renewals keep the job
+    time.sleep(1.3)  # past the lease: only renewals keep the job
     assert store.reap_expired() == []
     following = loop.claim()  # waits for the commit first
     done = store.get_job(first)
