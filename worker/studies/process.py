@@ -61,30 +61,49 @@ def study_cost(spec: StudySpec) -> int:
     return math.ceil(spec.designs.count * share * _MILLIONTHS)
 
 
+def _probe_indices(count: int, most: int = 9) -> list[int]:
+    """Designs a dry check tries, in order: the first, then evenly spread ones, the
+    middle among them, then the last."""
+    if count <= most:
+        return list(range(count))
+    spread = [round(i * (count - 1) / (most - 1)) for i in range(most)]
+    return list(dict.fromkeys([0, count // 2, *spread]))
+
+
 def dry_check(spec: StudySpec) -> list[dict[str, Any]]:
-    """At submission: the first design run once, so that fixed inputs the process
-    refuses whatever the varied values, and objective paths it does not report, are a
-    422 before anything is queued.  A first design the process refuses for a varied
-    value is no error (other designs may be fine); a first design too costly to run
-    during a request (above the process's sync limit and a thousandth of its cost
-    limit) is not run."""
+    """At submission: a design run once, so that fixed inputs the process refuses
+    whatever the varied values, and objective paths it does not report, are a 422
+    before anything is queued.  The first design is tried, then others spread over the
+    space until one validates: a design refused for its varied values is no error
+    (other designs may be fine), but fixed inputs every tried design is refused for
+    are.  A design too costly to run during a request (above the process's sync limit
+    and a thousandth of its cost limit) is not run."""
     from worker.errors import InvalidInputs
     from worker.studies.evaluation import design_inputs
     from worker.studies.paths import parse_result_path, reported
     from worker.submission import validate_inputs
 
     process = _target(spec)
-    first = tuple(float(v) for v in spec.designs.block(0, 1)[0])
-    raw = design_inputs(spec, first)
-    if "plots" in process.inputs_model.model_fields:
-        raw["plots"] = False
-    try:
-        inputs = validate_inputs(process, raw)
-    except InvalidInputs as exc:
-        varied = {_field_of(name) for name in spec.designs.names}
-        if any(any(e["field"].startswith(v) for v in varied) for e in exc.errors):
-            return []
-        message = f"{spec.process} refuses the first design whatever is varied: {exc}"
+    varied = {_field_of(name) for name in spec.designs.names}
+    inputs = None
+    refusals: list[InvalidInputs] = []
+    for index in _probe_indices(spec.designs.count):
+        design = tuple(float(v) for v in spec.designs.block(index, index + 1)[0])
+        raw = design_inputs(spec, design)
+        if "plots" in process.inputs_model.model_fields:
+            raw["plots"] = False
+        try:
+            inputs = validate_inputs(process, raw)
+            break
+        except InvalidInputs as exc:
+            if any(any(e["field"].startswith(v) for v in varied) for e in exc.errors):
+                return []  # refused for a varied value: the designs will say which
+            refusals.append(exc)
+    if inputs is None:
+        message = (
+            f"{spec.process} refuses every design tried ({len(refusals)}, spread over the "
+            f"space), the first with: {refusals[0]}"
+        )
         return [{"field": "inputs.fixed", "type": "value_error", "message": message}]
     if process.cost(inputs) > max(process.sync_cost_limit, process.cost_limit // 1000):
         return []
@@ -94,7 +113,7 @@ def dry_check(spec: StudySpec) -> list[dict[str, Any]]:
         return []
     return [
         {"field": f"inputs.objectives.{name}", "type": "value_error",
-         "message": f"{spec.process} reports nothing at this path (checked on the first design)"}
+         "message": f"{spec.process} reports nothing at this path (checked on a design)"}
         for name in spec.objectives
         if not reported(result, parse_result_path(name))
     ]  # fmt: skip

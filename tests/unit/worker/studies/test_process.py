@@ -78,3 +78,27 @@ def test_the_whole_study_in_one_process() -> None:
     assert (result["count"], result["evaluated"], result["feasible"]) == (3, 3, 3)
     assert [a.name for a in outcome.artifacts] == ["designs.csv", "designs.npz"]
     assert result["best"]["links|sum"][0]["parameters"] == {"links[2]": 6.0}
+
+
+def test_a_first_design_refused_for_its_varied_values_is_no_error() -> None:
+    """Bai's SPM at (30, 30) cannot reach Example I's workspace at all: the process
+    refuses it on its ``workspace`` field, not on a varied one; other designs of the
+    grid (60, 90) are fine, so the study is accepted and its objectives are checked on
+    the first design that validates."""
+    study = StudySpec.model_validate(STUDY.examples[0].inputs)
+    assert study.designs.block(0, 1)[0].tolist() == [30.0, 30.0]
+    assert dry_check(study) == []
+    wrong = study.model_copy(update={"objectives": {"indices.no_such_index": "max"}})
+    (problem,) = dry_check(wrong)
+    assert problem["field"] == "inputs.objectives.indices.no_such_index"
+
+
+def test_fixed_inputs_refused_at_every_tried_design_are_refused() -> None:
+    study = StudySpec.model_validate(
+        {**STUDY.examples[0].inputs,
+         "fixed": {"beta_deg": 90, "gamma_deg": 0,
+                   "workspace": {"tilt_max_deg": 60, "torsion_deg": [0, 1000]}}}
+    )  # fmt: skip
+    (problem,) = dry_check(study)
+    assert problem["field"] == "inputs.fixed"
+    assert "refuses every design tried" in problem["message"]
