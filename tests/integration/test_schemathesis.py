@@ -26,7 +26,7 @@ from tests.integration.servers import Deployment, deployment
 pytestmark = [pytest.mark.integration, pytest.mark.slow]
 
 #: Cases per operation (operations without parameters have fewer distinct cases).
-EXAMPLES = 150
+EXAMPLES = 100
 #: /health/ready answers 503 by design when no worker is up, as here.
 NOT_READY_BY_DESIGN = "/health/ready"
 
