@@ -76,9 +76,9 @@ def _paper_points(
     return points
 
 
-def _markers(
-    spec: StudySpec, table: StudyTable, marks: list[PaperMark], axes: list[int]
-) -> list[Marker]:
+def _markers(table: StudyTable, marks: list[PaperMark], axes: list[int]) -> list[Marker]:
+    """The paper's designs as figure markers: their values on ``axes``, and their
+    objectives where the study evaluated them."""
     markers = []
     for mark in marks:
         row = _table_row(table, mark.row)
@@ -101,14 +101,14 @@ def _figures(
         maps = [values[:, k].reshape(shape) for k in range(values.shape[1])]
         axes_labels = [f"{code(a[0])} [{parameter_unit(process, a[0], spec.fixed)}]" for a in axes]
         values_of_axes = [space.values(position) for position in positions]
-        markers = _markers(spec, table, marks, positions)
+        markers = _markers(table, marks, positions)
         title = f"Design study of {spec.process}"
         draw = objective_slices_figure if len(axes) == 3 else objective_maps_figure
         fig = draw(values_of_axes, axes_labels, maps, labels, title, markers)
         out += figure_artifacts(fig, "objective_maps", "Each objective over the varied inputs")
     if len(spec.objectives) >= 2:
         front = pareto_rows(spec, table)
-        markers = _markers(spec, table, marks, list(range(len(space.names))))
+        markers = _markers(table, marks, list(range(len(space.names))))
         fig = pareto_figure(values, front, labels, list(spec.objectives.values()),
                             f"Design study of {spec.process}: objective space",
                             markers)  # fmt: skip
