@@ -10,6 +10,7 @@ from __future__ import annotations
 from collections.abc import AsyncIterator, Iterator
 from contextlib import ExitStack
 from pathlib import Path
+from typing import Any
 
 import httpx
 import pytest
@@ -63,3 +64,36 @@ def server(
     """A deployment with two worker processes, shared by a test module."""
     with deployment(str(request.param), tmp_path_factory.mktemp("dexlab")) as dep:
         yield dep
+
+
+#: Modules whose tests measure time (leases, outages, latencies) or kill processes on
+#: purpose: under pytest-xdist they run one after another on one process, beside the
+#: other modules (see `pytest_xdist_make_scheduler`).
+TIMED_MODULES = frozenset({"test_faults", "test_server", "test_fairness", "test_pages_events"})
+TIMED = "timed"
+
+
+def xdist_scope(nodeid: str) -> str:
+    """The unit of work one xdist process takes whole: the test's module (so its
+    module-scoped servers start once), or :data:`TIMED` for the timed modules."""
+    module = nodeid.split("::", 1)[0]
+    return TIMED if Path(module).stem in TIMED_MODULES else module
+
+
+@pytest.hookimpl(optionalhook=True)
+def pytest_xdist_make_scheduler(config: pytest.Config, log: Any) -> Any:
+    """Whole modules per process, the timed ones as one unit handed out first (it is
+    the longest).  (xdist's `loadgroup` would do it with markers, but it renames node
+    IDs in a way pytest 9 no longer sees.)"""
+    from xdist.scheduler import LoadScopeScheduling
+
+    class ModuleScheduling(LoadScopeScheduling):  # type: ignore[misc]
+        def _split_scope(self, nodeid: str) -> str:
+            return xdist_scope(nodeid)
+
+        def _assign_work_unit(self, node: Any) -> None:
+            if TIMED in self.workqueue:
+                self.workqueue.move_to_end(TIMED, last=False)
+            super()._assign_work_unit(node)
+
+    return ModuleScheduling(config, log)

@@ -44,7 +44,10 @@ def create_celery_app(settings: WorkerSettings) -> Celery:
     )
     app.dexlab_settings = settings
 
-    @app.task(name=RUN_JOB, bind=True, max_retries=None)  # type: ignore[untyped-decorator]
+    # shared=False: the task belongs to this app only (a shared task would be added to
+    # every app created later in the process, twice over in `dexlab worker`, which
+    # makes one app for the worker and one for sending).
+    @app.task(name=RUN_JOB, bind=True, max_retries=None, shared=False)  # type: ignore[untyped-decorator]
     def run_job(self: Task, job_id: str) -> None:
         from worker.dispatch.celery.worker import run_delivered_job
 

@@ -67,3 +67,19 @@ def test_time_limits_stay_below_the_brokers_redelivery_window() -> None:
     assert amqp.time_limit_for(1800) == 0.9 * 1800
     redis = WorkerSettings(broker_url="redis://127.0.0.1:6379/0", broker_visibility_timeout_s=1000)
     assert redis.time_limit_for(1800) == 900
+
+
+def test_each_celery_app_has_its_own_task_and_no_duplicate_warning() -> None:
+    """`dexlab worker` makes two apps (one to work, one to send): neither may receive
+    the other's task (Celery warns of a duplicate task name when one does)."""
+    import warnings
+
+    from worker.dispatch.celery.app import RUN_JOB, create_celery_app
+
+    settings = WorkerSettings(broker_url="redis://127.0.0.1:1/0")
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        apps = [create_celery_app(settings) for _ in range(3)]
+        tasks = [app.tasks[RUN_JOB] for app in apps]
+    assert len({id(task) for task in tasks}) == 3
+    assert all(task.app is app for task, app in zip(tasks, apps, strict=True))
