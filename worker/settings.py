@@ -61,7 +61,10 @@ class WorkerSettings(BaseSettings):
         2.0, gt=0, description="How often expired leases are reaped and lost jobs re-sent."
     )
     redispatch_after_s: float = Field(
-        30.0, gt=0, description="Re-send an accepted job not claimed this long after dispatch."
+        30.0,
+        gt=0,
+        description="Re-send an accepted job not claimed this long after dispatch, when "
+        "the broker's queue holds fewer messages than there are queued jobs.",
     )
     # -- sharing one service (quotas, retention, priority) -------------------------------
     max_queued: int = Field(

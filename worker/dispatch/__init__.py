@@ -24,6 +24,10 @@ class Dispatcher(Protocol):
         """Make the job reach a worker; never raises for a broker outage (the job is
         committed, and the sweeper sends it again)."""
 
+    def waiting_messages(self) -> int | None:
+        """Messages waiting in the broker for a worker to take them, or None when
+        there is no broker or it cannot say."""
+
     def close(self) -> None: ...
 
 
@@ -31,6 +35,9 @@ class LocalDispatch:
     """The local pool polls the store, so there is nothing to send."""
 
     def dispatch(self, job_id: str, time_limit_s: float) -> None:
+        return None
+
+    def waiting_messages(self) -> int | None:
         return None
 
     def close(self) -> None:

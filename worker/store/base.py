@@ -307,6 +307,9 @@ class JobStore(Protocol):
     def undispatched(self, older_than_s: float, limit: int = 100) -> list[str]:
         """Accepted jobs not dispatched within ``older_than_s`` (lost messages)."""
 
+    def accepted_count(self, bound: int) -> int:
+        """Accepted jobs (chunks included), counted up to ``bound``."""
+
     def schema_version(self) -> int: ...
 
     def close(self) -> None: ...

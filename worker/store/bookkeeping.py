@@ -49,6 +49,16 @@ class Bookkeeping:
         )
         return [r["job_id"] for r in rows]
 
+    @retrying
+    def accepted_count(self, bound: int) -> int:
+        """Accepted jobs (chunks included), counted up to ``bound``."""
+        rows = self._all(
+            self._conn(),
+            "SELECT COUNT(*) AS n FROM (SELECT 1 FROM jobs WHERE status = ? LIMIT ?) AS q",
+            (_ACCEPTED, bound),
+        )
+        return int(rows[0]["n"]) if rows else 0
+
     # -- worker registry --------------------------------------------------------------
     @retrying
     def register_worker(self, worker_id: str, host: str, pid: int) -> None:

@@ -51,6 +51,20 @@ class CeleryDispatch:
             return
         self.store.mark_dispatched(job_id)
 
+    def waiting_messages(self) -> int | None:
+        """The messages in the queue, not yet handed to a worker (a passive declare,
+        which Redis and RabbitMQ both answer), or None if the broker cannot say."""
+        try:
+            with self.app.connection_for_read() as conn:
+                conn.ensure_connection(max_retries=1)
+                _, count, _ = conn.default_channel.queue_declare(
+                    queue=self.settings.queue, passive=True
+                )
+            return int(count)
+        except Exception as exc:  # the queue not declared yet, or the broker away
+            log.debug("cannot count the broker's waiting messages: %s", exc)
+            return None
+
     def close(self) -> None:
         self.app.close()
 
@@ -76,7 +90,8 @@ def hard_time_limit(settings: WorkerSettings, time_limit_s: float) -> float:
 
 class Sweeper(threading.Thread):
     """Every ``sweep_seconds``: requeue jobs whose lease expired (their worker died)
-    and send them again, and re-send accepted jobs whose message was lost.
+    and send them again, and re-send accepted jobs whose message was lost
+    (:meth:`_lost`).
 
     Runs beside the API (broker mode) and in each ``dexlab worker``; running several is
     harmless, since a job is claimed in the store exactly once per attempt.
@@ -106,13 +121,30 @@ class Sweeper(threading.Thread):
         if self.worker_id is not None:
             self.store.worker_heartbeat(self.worker_id)
         job_ids = self.store.reap_expired()
-        job_ids += self.store.undispatched(self.settings.redispatch_after_s)
+        job_ids += self._lost()
         for job_id in dict.fromkeys(job_ids):
             job = self.store.get_job(job_id)
             if job is not None:
                 log.info("re-sending job %s to the broker", job_id)
                 self.dispatcher.dispatch(job_id, job.time_limit_s)
         return len(job_ids)
+
+    def _lost(self) -> list[str]:
+        """Jobs whose message may be lost: accepted jobs not claimed within
+        ``redispatch_after_s`` of their last message, but only as many as the broker's
+        queue lacks messages for the accepted jobs.  A delivery claims the next job in
+        fair order whichever job its message names, so messages are interchangeable:
+        while the queue holds one for every waiting job, none was lost, however long
+        the backlog (re-sending would only pile up duplicates).  When the broker cannot
+        say, every overdue job is sent again (duplicates are dropped on delivery)."""
+        overdue = self.store.undispatched(self.settings.redispatch_after_s)
+        if not overdue:
+            return []
+        waiting = self.dispatcher.waiting_messages()
+        if waiting is None:
+            return overdue
+        missing = self.store.accepted_count(waiting + len(overdue)) - waiting
+        return overdue[: max(0, missing)]
 
     def run(self) -> None:
         while not self._stopping.wait(self.settings.sweep_seconds):

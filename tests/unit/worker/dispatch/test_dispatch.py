@@ -13,11 +13,15 @@ from worker.store.base import NewJob
 
 
 class RecordingDispatch:
-    def __init__(self) -> None:
+    def __init__(self, waiting: int | None = None) -> None:
         self.sent: list[tuple[str, float]] = []
+        self.waiting = waiting
 
     def dispatch(self, job_id: str, time_limit_s: float) -> None:
         self.sent.append((job_id, time_limit_s))
+
+    def waiting_messages(self) -> int | None:
+        return self.waiting
 
     def close(self) -> None:
         pass
@@ -60,6 +64,36 @@ def test_sweeper_resends_lost_and_expired_jobs(tmp_path: Path) -> None:
     assert (running.job_id, 40) in fake.sent
 
 
+def test_sweeper_resends_only_what_the_brokers_queue_lacks(tmp_path: Path) -> None:
+    """A backlog older than redispatch_after_s is not lost while the queue holds a
+    message for each waiting job; the deficit is re-sent, oldest first."""
+    store = open_store(f"sqlite:///{tmp_path / 'j.db'}")
+    jobs = [store.create_job(NewJob("p", {}, time_limit_s=30, max_attempts=3))[0]
+            for _ in range(4)]  # fmt: skip
+    for job in jobs:
+        store.mark_dispatched(job.job_id)
+    time.sleep(0.02)
+    fake = RecordingDispatch(waiting=4)
+    sweeper = Sweeper(WorkerSettings(redispatch_after_s=0.01), store, fake)
+    assert sweeper.sweep() == 0 and fake.sent == []
+    fake.waiting = 5  # more messages than jobs (duplicates, a retry on its way)
+    assert sweeper.sweep() == 0
+    fake.waiting = 1  # three were lost
+    assert sweeper.sweep() == 3
+    assert [job_id for job_id, _ in fake.sent] == [j.job_id for j in jobs[:3]]
+    for job_id, _ in fake.sent:
+        store.mark_dispatched(job_id)  # as CeleryDispatch.dispatch does
+    fake.sent.clear()
+    assert sweeper.sweep() == 1  # the queue still lacks three: the fourth is sent
+    assert fake.sent == [(jobs[3].job_id, 30)]
+    store.mark_dispatched(jobs[3].job_id)
+    assert sweeper.sweep() == 0  # every job was sent again just now: none is overdue
+    time.sleep(0.02)
+    fake.waiting = None  # the broker cannot say: every overdue job is sent again
+    assert sweeper.sweep() == 4
+    assert store.accepted_count(2) == 2 and store.accepted_count(10) == 4
+
+
 def test_time_limits_stay_below_the_brokers_redelivery_window() -> None:
     assert WorkerSettings().time_limit_for(1800) == 1800
     assert WorkerSettings(max_time_limit_s=60).time_limit_for(1800) == 60
@@ -83,3 +117,25 @@ def test_each_celery_app_has_its_own_task_and_no_duplicate_warning() -> None:
         tasks = [app.tasks[RUN_JOB] for app in apps]
     assert len({id(task) for task in tasks}) == 3
     assert all(task.app is app for task, app in zip(tasks, apps, strict=True))
+
+
+def test_celery_delivery_lines_show_only_at_debug() -> None:
+    import logging
+
+    from worker.dispatch.celery.worker import _DELIVERY_LOGGERS, _quiet_delivery_lines
+
+    loggers = [logging.getLogger(name) for name in _DELIVERY_LOGGERS]
+    before = [logger.level for logger in loggers]
+    try:
+        _quiet_delivery_lines("INFO")
+        assert all(not logger.isEnabledFor(logging.INFO) for logger in loggers)
+        assert all(logger.isEnabledFor(logging.ERROR) for logger in loggers)
+        for logger in loggers:
+            logger.setLevel(logging.NOTSET)
+        logging.getLogger("celery").setLevel(logging.DEBUG)
+        _quiet_delivery_lines("debug")
+        assert all(logger.isEnabledFor(logging.INFO) for logger in loggers)
+    finally:
+        logging.getLogger("celery").setLevel(logging.NOTSET)
+        for logger, level in zip(loggers, before, strict=True):
+            logger.setLevel(level)

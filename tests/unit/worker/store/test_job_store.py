@@ -209,8 +209,10 @@ def test_dispatch_bookkeeping_and_reaping(store: JobStore) -> None:
     assert store.undispatched(60.0) == []
     store.mark_dispatched(a.job_id)
     assert store.undispatched(0.2) == [b.job_id]
+    assert store.accepted_count(10) == 2 and store.accepted_count(1) == 1
     claim = store.claim_job(a.job_id, "w", 10).claim
     assert claim is not None
+    assert store.accepted_count(10) == 1
     assert store.reap_expired() == []
     store.expire_leases_of("w")
     assert store.reap_expired() == [a.job_id]
