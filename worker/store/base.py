@@ -12,7 +12,8 @@ from dataclasses import dataclass
 from datetime import datetime
 from typing import Any, Protocol
 
-from worker.contract import Artifact, ArtifactInfo, ChildEnd, JobRecord, JobStatus
+from worker.contract import Artifact, ChildEnd, JobRecord, JobStatus
+from worker.store.records import ApiKey, CallbackClaim, JobTally, StoredArtifact, WorkerInfo
 
 __all__ = [
     "ApiKey",
@@ -129,67 +130,6 @@ class JobFilter:
     max_duration_s: float | None = None
     #: The children of this job (a study's chunks); None: jobs that are nobody's child.
     parent_id: str | None = None
-
-
-@dataclass(frozen=True)
-class CallbackClaim:
-    """A callback one sender now owns: POST ``event``'s document to ``uri``, then
-    report the outcome with ``token``.  ``attempt`` counts from 1."""
-
-    job_id: str
-    event: str
-    uri: str
-    token: str
-    attempt: int
-
-
-@dataclass(frozen=True)
-class StoredArtifact:
-    """A committed artifact: its metadata, the attempt whose bytes it is, and the
-    SHA-256 of those bytes (hex; the HTTP ETag)."""
-
-    info: ArtifactInfo
-    attempt: int
-    etag: str
-
-
-@dataclass(frozen=True)
-class ApiKey:
-    """An API key as the store keeps it: the SHA-256 of its secret, never the secret.
-
-    ``key_id`` is replaced with the secret (a browser session names it, so replacing
-    or revoking a key ends its sessions); times are epoch seconds."""
-
-    name: str
-    key_id: str
-    secret_hash: str
-    admin: bool
-    created: float
-    revoked: float | None
-    last_used: float | None
-
-
-@dataclass(frozen=True)
-class JobTally:
-    """One running count of :mod:`worker.store.tallies`: ``count`` events (and, for a
-    histogram bucket, the sum ``total`` of their seconds) of ``tally`` and ``label``."""
-
-    process_id: str
-    tally: str
-    label: str
-    count: int
-    total: float
-
-
-@dataclass(frozen=True)
-class WorkerInfo:
-    """A worker process that registered with the store."""
-
-    worker_id: str
-    host: str
-    pid: int
-    started: float
-    heartbeat: float
 
 
 class JobStore(Protocol):

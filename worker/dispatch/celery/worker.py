@@ -151,19 +151,6 @@ def _settle_at_exit(app: Celery) -> None:
         runtime.loop.settle()
 
 
-#: Celery's own lines for every delivery ("Task ... received", "... succeeded in"):
-#: DEBUG lines here, since each job's own line ("worker ... runs job ...") says it.
-_DELIVERY_LOGGERS = ("celery.worker.strategy", "celery.app.trace")
-
-
-def _quiet_delivery_lines(log_level: str) -> None:
-    """Below DEBUG, Celery's per-delivery INFO lines are not written (nor formatted):
-    their loggers start at WARNING.  Failures (ERROR) still show."""
-    if logging.getLevelName(log_level.upper()) != logging.DEBUG:
-        for name in _DELIVERY_LOGGERS:
-            logging.getLogger(name).setLevel(logging.WARNING)
-
-
 def _logging_is_set_up(**_: Any) -> None:
     """Celery's ``setup_logging`` signal: with a receiver, Celery leaves logging alone."""
 
@@ -179,7 +166,6 @@ def run_celery_worker(
     signals.setup_logging.connect(_logging_is_set_up, weak=False, dispatch_uid="dexlab")
     if json_lines:
         stdout_as_log_lines("celery.stdout")
-    _quiet_delivery_lines(log_level)
     # The pool processes run the jobs at a lower priority; this main process only
     # receives messages and hands them over, and keeps its own priority so that the
     # pool is never kept waiting for its next message.

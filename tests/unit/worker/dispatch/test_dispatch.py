@@ -117,25 +117,3 @@ def test_each_celery_app_has_its_own_task_and_no_duplicate_warning() -> None:
         tasks = [app.tasks[RUN_JOB] for app in apps]
     assert len({id(task) for task in tasks}) == 3
     assert all(task.app is app for task, app in zip(tasks, apps, strict=True))
-
-
-def test_celery_delivery_lines_show_only_at_debug() -> None:
-    import logging
-
-    from worker.dispatch.celery.worker import _DELIVERY_LOGGERS, _quiet_delivery_lines
-
-    loggers = [logging.getLogger(name) for name in _DELIVERY_LOGGERS]
-    before = [logger.level for logger in loggers]
-    try:
-        _quiet_delivery_lines("INFO")
-        assert all(not logger.isEnabledFor(logging.INFO) for logger in loggers)
-        assert all(logger.isEnabledFor(logging.ERROR) for logger in loggers)
-        for logger in loggers:
-            logger.setLevel(logging.NOTSET)
-        logging.getLogger("celery").setLevel(logging.DEBUG)
-        _quiet_delivery_lines("debug")
-        assert all(logger.isEnabledFor(logging.INFO) for logger in loggers)
-    finally:
-        logging.getLogger("celery").setLevel(logging.NOTSET)
-        for logger, level in zip(loggers, before, strict=True):
-            logger.setLevel(level)

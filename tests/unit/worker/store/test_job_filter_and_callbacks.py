@@ -3,8 +3,9 @@ SQLite and PostgreSQL."""
 
 from __future__ import annotations
 
+import random
 import time
-from datetime import UTC, datetime
+from datetime import UTC, datetime, timedelta
 from typing import Any
 
 from worker.contract import JobStatus
@@ -58,6 +59,23 @@ def test_created_bounds_are_inclusive_to_the_printed_microsecond(store: JobStore
     assert ids(store, JobFilter(created_from=at(2000))) == [jobs[2], jobs[1]]
     assert ids(store, JobFilter(created_to=at(2000))) == [jobs[0]]
     assert ids(store, JobFilter(created_from=at(1000), created_to=at(3000))) == jobs[::-1]
+
+
+def test_created_bounds_match_the_printed_microsecond_of_todays_times(store: JobStore) -> None:
+    """Near 1.8e9 s a float is only good to 0.24 us: a bound one microsecond before or
+    after what a document prints must still exclude the job, whatever the float's
+    sub-microsecond part (random times, and times a hair off each half microsecond)."""
+    job_id = store.create_job(new_job())[0].job_id
+    rng = random.Random(7)
+    times = [rng.uniform(1.7e9, 2.0e9) for _ in range(150)]
+    times += [round(t, 6) + d for t in times[:50] for d in (-5e-7, -4.9e-7, 4.9e-7, 5e-7)]
+    one = timedelta(microseconds=1)
+    for created in times:
+        set_times(store, job_id, created=created)
+        printed = store.get_job(job_id).created  # type: ignore[union-attr]
+        assert ids(store, JobFilter(created_from=printed, created_to=printed)) == [job_id]
+        assert ids(store, JobFilter(created_to=printed - one)) == [], created
+        assert ids(store, JobFilter(created_from=printed + one)) == [], created
 
 
 def test_duration_bounds_select_jobs_that_ran(store: JobStore) -> None:
