@@ -10,12 +10,17 @@ worker drains it at the end.
 from __future__ import annotations
 
 import time
+from contextlib import ExitStack
 from pathlib import Path
 
 import pytest
 from kombu import Connection, Queue
 
-from tests.integration.servers import deployment, wait_terminal
+from tests.integration.servers import backend_env, deployment, wait_terminal
+from worker.dispatch.celery.dispatch import CeleryDispatch
+from worker.settings import WorkerSettings
+from worker.store import open_store
+from worker.store.base import NewJob
 
 pytestmark = pytest.mark.integration
 
@@ -62,3 +67,35 @@ def test_a_backlog_is_not_sent_twice_and_lost_messages_are_sent_again(
         dep.start_worker(1)
         for job_id in ids:
             assert wait_terminal(dep.client, job_id)["status"] == "successful"
+
+
+@pytest.mark.parametrize("backend", ["celery-redis", "celery-rabbitmq"])
+def test_the_dispatcher_counts_waiting_messages_on_one_kept_connection(
+    backend: str, tmp_path: Path
+) -> None:
+    with ExitStack() as stack:
+        env = backend_env(backend, stack)
+        settings = WorkerSettings(
+            broker_url=env["DEXLAB_BROKER_URL"],
+            queue=env["DEXLAB_QUEUE"],
+            store_url=env["DEXLAB_STORE_URL"],
+            data_dir=tmp_path,
+        )
+        store = open_store(settings.resolved_store_url())
+        stack.callback(store.close)
+        dispatcher = CeleryDispatch(settings, store)
+        stack.callback(dispatcher.close)
+        for _ in range(3):
+            job, _ = store.create_job(NewJob("fourbar-grashof", {}, 30, 3))
+            dispatcher.dispatch(job.job_id, 30)
+        counts = [dispatcher.waiting_messages() for _ in range(5)]
+        assert counts == [3] * 5
+        kept = dispatcher._counting
+        assert kept is not None and dispatcher.waiting_messages() == 3
+        assert dispatcher._counting is kept  # one connection, a channel per count
+        # A queue the broker does not have: None (the sweeper then re-sends as before),
+        # and the next count opens a new connection.
+        other = CeleryDispatch(settings.model_copy(update={"queue": "dexlab-no-such"}), store)
+        stack.callback(other.close)
+        assert other.waiting_messages() is None and other._counting is None
+        assert dispatcher.waiting_messages() == 3

@@ -12,6 +12,8 @@ from __future__ import annotations
 
 import logging
 import threading
+from contextlib import suppress
+from typing import Any
 
 from worker.dispatch import Dispatcher
 from worker.dispatch.celery.app import RUN_JOB, create_celery_app
@@ -34,6 +36,7 @@ class CeleryDispatch:
         self.store = store
         self.app = create_celery_app(settings)
         self._longest_s = longest_time_limit(settings)
+        self._counting: Any = None  # the broker connection waiting_messages keeps
 
     def dispatch(self, job_id: str, time_limit_s: float) -> None:
         try:
@@ -52,20 +55,34 @@ class CeleryDispatch:
         self.store.mark_dispatched(job_id)
 
     def waiting_messages(self) -> int | None:
-        """The messages in the queue, not yet handed to a worker (a passive declare,
-        which Redis and RabbitMQ both answer), or None if the broker cannot say."""
+        """The messages in the queue, not yet handed to a worker (a passive declare on
+        a channel of its own, which Redis and RabbitMQ both answer), or None if the
+        broker cannot say.  One connection is kept for it (the sweeper asks every sweep
+        while jobs are overdue), and dropped on any error."""
         try:
-            with self.app.connection_for_read() as conn:
-                conn.ensure_connection(max_retries=1)
-                _, count, _ = conn.default_channel.queue_declare(
-                    queue=self.settings.queue, passive=True
-                )
+            if self._counting is None:
+                self._counting = self.app.connection_for_read()
+                self._counting.ensure_connection(max_retries=1)
+            channel = self._counting.channel()
+            try:
+                _, count, _ = channel.queue_declare(queue=self.settings.queue, passive=True)
+            finally:
+                with suppress(Exception):
+                    channel.close()
             return int(count)
         except Exception as exc:  # the queue not declared yet, or the broker away
             log.debug("cannot count the broker's waiting messages: %s", exc)
+            self._drop_counting()
             return None
 
+    def _drop_counting(self) -> None:
+        counting, self._counting = self._counting, None
+        if counting is not None:
+            with suppress(Exception):
+                counting.release()
+
     def close(self) -> None:
+        self._drop_counting()
         self.app.close()
 
 
