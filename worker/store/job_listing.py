@@ -11,11 +11,11 @@ from worker.store.base import JobFilter
 __all__ = ["filter_clauses"]
 
 #: Documents print times rounded to the microsecond, and a bound matches what they
-#: print.  A float near 1.8e9 s is only good to 0.24 us (and `created * 1e6` lands on a
-#: half a quarter of the time), so a row is first kept by a range on the column itself,
-#: a microsecond wider than the bound (its index serves it), then its time is rounded
-#: exactly: its distance from the bound's whole second is exact in floating point, and
-#: that distance in microseconds is rounded and compared with the bound's.
+#: print.  A float near 1.8e9 s is only good to 0.24 us (and `created * 1e6`, rounded to
+#: a quarter, is an exact tie one time in four), so a row is first kept by a range on
+#: the column itself, a microsecond wider than the bound (its index serves it), then
+#: its time is rounded exactly: its distance from the bound's whole second is exact in
+#: floating point, and that distance in microseconds is rounded and compared.
 _MICROSECOND = 1e-6
 _ROUNDED = "ROUND((created - ?) * 1000000)"
 _EPOCH = datetime(1970, 1, 1, tzinfo=UTC)
