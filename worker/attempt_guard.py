@@ -12,6 +12,10 @@ While the attempt computes, the guard stops the whole process (``os._exit``; the
 or Celery starts a fresh one) when the job is dismissed, when another attempt took it
 over, or when its time limit passes (after recording the failure).  While the outcome
 is committed it only renews the lease: the commit is fenced and finds out by itself.
+A loop whose outcomes are committed on a thread of their own may start its next
+attempt meanwhile, so the guard may hold a committing attempt beside the computing
+one; a stop waits for such commits to end (a lease at most), so that stopping for one
+job never undoes another's finished work.
 """
 
 from __future__ import annotations
@@ -40,7 +44,7 @@ EXIT_LEASE_LOST = 5
 
 @dataclass
 class _Watch:
-    """The attempt being guarded."""
+    """An attempt being guarded."""
 
     claim: Claim
     deadline: float
@@ -70,7 +74,10 @@ class AttemptGuard(threading.Thread):
         self._worker_id = worker_id
         self._changed = threading.Condition()
         self._acting = threading.Lock()  # held while a heartbeat acts for an attempt
-        self._watch: _Watch | None = None
+        #: The attempt computing (at most one) and those whose outcome is being committed
+        #: (replaced, never changed in place, so a heartbeat can read it unlocked).
+        self._watches: list[_Watch] = []
+        self._exiting = False
         self._wakes_at = float("inf")
 
     def watch(self, claim: Claim, deadline: float, progress: StoreProgress | None = None) -> None:
@@ -78,55 +85,73 @@ class AttemptGuard(threading.Thread):
         ``time.time()``); each heartbeat writes ``progress``'s held-back report."""
         with self._changed:
             next_beat = time.time() + self._settings.heartbeat_seconds
-            self._watch = _Watch(claim, deadline, progress, next_beat)
+            self._watches = [*self._watches, _Watch(claim, deadline, progress, next_beat)]
             if min(deadline, next_beat) < self._wakes_at:
                 self._changed.notify()
         if not self.is_alive():
             self.start()
 
-    def committing(self) -> None:
-        """The attempt's work is done: from now on only renew its lease."""
+    def committing(self, claim: Claim) -> None:
+        """The attempt's work is done: from now on only renew its lease (while the loop
+        may already be running its next attempt)."""
         with self._changed:
-            if self._watch is not None:
-                self._watch.committing = True
+            for watch in self._watches:
+                if watch.claim is claim:
+                    watch.committing = True
 
-    def release(self) -> None:
+    def release(self, claim: Claim) -> None:
         """Stop guarding the attempt; returns once no heartbeat for it is in flight."""
         with self._acting, self._changed:
-            self._watch = None
+            self._watches = [w for w in self._watches if w.claim is not claim]
+            if self._exiting:  # it waits for the commits to end
+                self._changed.notify_all()
 
     def run(self) -> None:
         while True:
             with self._changed:
-                watch = self._watch
                 now = time.time()
-                wake = now + self._settings.heartbeat_seconds
-                if watch is not None:
-                    wake = min(wake, watch.due)
+                wake = min([now + self._settings.heartbeat_seconds]
+                           + [w.due for w in self._watches])  # fmt: skip
                 self._wakes_at = wake
                 self._changed.wait(max(0.01, wake - now))
                 self._wakes_at = float("inf")
-                watch = self._watch
                 now = time.time()
-                if watch is None or now < watch.due:
-                    continue
-            with self._acting:
-                if self._watch is watch:
+                due = [w for w in self._watches if now >= w.due]
+            for watch in due:
+                code: int | None = None
+                with self._acting:
+                    if not any(w is watch for w in self._watches):
+                        continue  # released meanwhile
                     with log_context(job_id=watch.claim.job.job_id):
-                        self._beat(watch)
+                        code = self._beat(watch)
                     watch.next_beat = time.time() + self._settings.heartbeat_seconds
+                if code is not None:
+                    self._exit(code)
 
-    def _beat(self, watch: _Watch) -> None:
+    def _exit(self, code: int) -> None:
+        """Stop the process, once the outcomes being committed are committed (a lease
+        at most: the stop must not wait for ever on a store in trouble)."""
+        with self._changed:
+            self._exiting = True
+            self._changed.wait_for(
+                lambda: not any(w.committing for w in self._watches),
+                timeout=self._settings.lease_seconds,
+            )
+        os._exit(code)
+
+    def _beat(self, watch: _Watch) -> int | None:
+        """One heartbeat; the exit code when the process must stop."""
         job = watch.claim.job
         if not watch.committing and time.time() >= watch.deadline:
-            self._stop_for_time_limit(watch.claim)
+            self._fail_for_time_limit(watch.claim)
+            return EXIT_TIME_LIMIT
         try:
             ack = self._store.heartbeat(
                 job.job_id, watch.claim.lease_token, self._settings.lease_seconds
             )
         except Exception as exc:  # the store is down or locked: keep guarding
             log.warning("job %s: heartbeat failed (%s); still guarding", job.job_id, exc)
-            return
+            return None
         try:
             self._store.worker_heartbeat(self._worker_id)
         except Exception as exc:
@@ -134,18 +159,18 @@ class AttemptGuard(threading.Thread):
         if ack.owner:
             if watch.progress is not None:
                 watch.progress.flush()
-            return
+            return None
         if watch.committing:  # the fenced commit finds out by itself
-            return
+            return None
         dismissed = ack.status is JobStatus.DISMISSED
         log.warning(
             "job %s %s; stopping this process",
             job.job_id,
             "was dismissed" if dismissed else "is no longer ours",
         )
-        os._exit(EXIT_DISMISSED if dismissed else EXIT_LEASE_LOST)
+        return EXIT_DISMISSED if dismissed else EXIT_LEASE_LOST
 
-    def _stop_for_time_limit(self, claim: Claim) -> None:
+    def _fail_for_time_limit(self, claim: Claim) -> None:
         job = claim.job
         error = {
             "type": "time-limit-exceeded",
@@ -160,4 +185,3 @@ class AttemptGuard(threading.Thread):
         except Exception:  # the lease lapses and the next attempt meets the limit again
             log.exception("job %s: could not record the time limit", job.job_id)
         log.warning("job %s exceeded its time limit; stopping", job.job_id)
-        os._exit(EXIT_TIME_LIMIT)

@@ -68,25 +68,36 @@ class WorkerLoop:
         self._guard = AttemptGuard(store, settings, self.worker_id)
         #: With ``commit_behind``, a job's outcome is committed on a thread of its own
         #: while the loop's caller goes on (a Celery delivery returns, so the broker's
-        #: acknowledgement and the next message overlap the commit); the next claim, and
-        #: :meth:`settle`, wait for it.  The lease is renewed until it is committed, so a
-        #: process that dies first leaves a job that is retried like any other.
+        #: acknowledgement, the next message and the next claim overlap the commit); the
+        #: next commit, and :meth:`settle`, wait for it.  The lease is renewed until it
+        #: is committed, so a process that dies first leaves a job that is retried like
+        #: any other.
         self._committer = (
             ThreadPoolExecutor(1, thread_name_prefix="commit") if commit_behind else None
         )
         self._pending: Future[None] | None = None
 
     def settle(self) -> None:
-        """Wait for an outcome still being committed (before a claim, and at exit)."""
+        """Wait for an outcome still being committed (before the next one is, when
+        nothing else is claimable, and at exit)."""
         pending, self._pending = self._pending, None
         if pending is not None:
             pending.result()
 
     def claim(self) -> Claim | None:
-        """The next job in fair order (a cheap one first if this loop prefers them).
-        Jobs whose lease expired are requeued first, once a heartbeat interval (not
-        before every claim: a lease lasts several intervals)."""
-        self.settle()
+        """The next job in fair order (a cheap one first if this loop prefers them),
+        claimed while the previous outcome may still be being committed.  Jobs whose
+        lease expired are requeued first, once a heartbeat interval (not before every
+        claim: a lease lasts several intervals)."""
+        claim = self._claim()
+        if claim is None and self._pending is not None:
+            # The outcome in flight may be what held the claim back (its job still counts
+            # towards its owner's running cap): settle it and look again.
+            self.settle()
+            claim = self._claim()
+        return claim
+
+    def _claim(self) -> Claim | None:
         now = time.monotonic()
         reap = now >= self._next_reap
         claim = self.store.claim_next(
@@ -164,15 +175,16 @@ class WorkerLoop:
                 self._split(claim, definition)
                 return
             outcome = self._run_job(claim, progress)
-            self._guard.committing()
+            self._guard.committing(claim)
         finally:
             if outcome is None:
-                self._guard.release()
+                self._guard.release(claim)
         if outcome is None:  # it failed, and its failure is recorded
             if job.parent_id is not None:
                 self._notify_parent(job.parent_id)
             return
         if self._committer is not None:
+            self.settle()  # one outcome in flight at a time
             self._pending = self._committer.submit(self._commit_behind, claim, *outcome)
         else:
             self._commit(claim, *outcome)
@@ -183,7 +195,7 @@ class WorkerLoop:
         try:
             commit_outcome(self.store, claim, result, artifacts, self._give_up_after_s)
         finally:
-            self._guard.release()
+            self._guard.release(claim)
         if claim.job.parent_id is not None:
             self._notify_parent(claim.job.parent_id)
 
@@ -220,7 +232,7 @@ class WorkerLoop:
             log.exception("job %s could not be split", job.job_id)
             record_failure(self.store, claim, error_document(exc), self._give_up_after_s)
             return
-        self._guard.release()  # the split drops the lease: no heartbeat may follow it
+        self._guard.release(claim)  # the split drops the lease: no heartbeat may follow it
         ids = self.store.split(job.job_id, claim.lease_token, children, allow_partial=allow_partial)
         if ids is None:
             log.warning("job %s was lost while it split", job.job_id)

@@ -60,6 +60,14 @@ class WorkerSettings(BaseSettings):
     sweep_seconds: float = Field(
         2.0, gt=0, description="How often expired leases are reaped and lost jobs re-sent."
     )
+    delivery_batch_s: float = Field(
+        0.05,
+        ge=0,
+        le=10,
+        description="Celery: how long one delivery may go on running the next jobs in fair "
+        "order, taking a waiting message off the queue for each (short jobs run back to "
+        "back instead of one per delivery); 0: one job per delivery.",
+    )
     redispatch_after_s: float = Field(
         30.0,
         gt=0,

@@ -90,12 +90,18 @@ def test_the_dispatcher_counts_waiting_messages_on_one_kept_connection(
             dispatcher.dispatch(job.job_id, 30)
         counts = [dispatcher.waiting_messages() for _ in range(5)]
         assert counts == [3] * 5
-        kept = dispatcher._counting
+        kept = dispatcher._kept
         assert kept is not None and dispatcher.waiting_messages() == 3
-        assert dispatcher._counting is kept  # one connection, a channel per count
+        assert dispatcher._kept is kept  # one connection, a channel per count
         # A queue the broker does not have: None (the sweeper then re-sends as before),
         # and the next count opens a new connection.
         other = CeleryDispatch(settings.model_copy(update={"queue": "dexlab-no-such"}), store)
         stack.callback(other.close)
-        assert other.waiting_messages() is None and other._counting is None
+        assert other.waiting_messages() is None and other._kept is None
         assert dispatcher.waiting_messages() == 3
+        # Taking a message (a delivery running one more job): one at a time, none left.
+        assert [dispatcher.take_waiting_message() for _ in range(4)] == [True] * 3 + [False]
+        assert dispatcher._kept is kept
+        # (Redis deletes an empty list, and then cannot tell an empty queue from none.)
+        assert dispatcher.waiting_messages() in (0, None)
+        assert other.take_waiting_message() is False

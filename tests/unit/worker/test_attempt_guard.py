@@ -49,7 +49,7 @@ def test_one_guard_renews_attempt_after_attempt(store: JobStore) -> None:
         guard.watch(claim, time.time() + 60)
         time.sleep(1.5)  # past the lease: only renewals keep it
         assert store.reap_expired() == []
-        guard.release()
+        guard.release(claim)
         assert store.complete(claim.job.job_id, claim.lease_token, {}, [])
     assert threading.active_count() >= 2 and guard.is_alive()
 
@@ -59,7 +59,7 @@ def test_a_released_attempt_is_no_longer_renewed(store: JobStore) -> None:
     claim = claim_one(store)
     guard.watch(claim, time.time() + 60)
     time.sleep(0.2)
-    guard.release()
+    guard.release(claim)
     last = lease_expires(store, claim)
     time.sleep(0.3)
     assert lease_expires(store, claim) == last
@@ -73,10 +73,10 @@ def test_a_committed_job_does_not_stop_the_process(store: JobStore) -> None:
     guard = AttemptGuard(store, SETTINGS, "w")
     claim = claim_one(store)
     guard.watch(claim, time.time() + 60)
-    guard.committing()
+    guard.committing(claim)
     assert store.complete(claim.job.job_id, claim.lease_token, {"ok": 1}, [])
     time.sleep(0.3)  # several heartbeats see a successful job (os._exit would end pytest)
-    guard.release()
+    guard.release(claim)
     job = store.get_job(claim.job.job_id)
     assert job is not None and job.status is JobStatus.SUCCESSFUL
 
@@ -85,11 +85,28 @@ def test_the_time_limit_is_not_applied_to_a_commit(store: JobStore) -> None:
     guard = AttemptGuard(store, SETTINGS, "w")
     claim = claim_one(store)
     guard.watch(claim, time.time() + 0.1)
-    guard.committing()
+    guard.committing(claim)
     time.sleep(0.4)  # past the limit: a computing attempt would be failed and stopped
-    guard.release()
+    guard.release(claim)
     job = store.get_job(claim.job.job_id)
     assert job is not None and job.status is JobStatus.RUNNING
+
+
+def test_a_committing_attempt_and_the_next_one_are_both_renewed(store: JobStore) -> None:
+    guard = AttemptGuard(store, SETTINGS, "w")
+    first = claim_one(store)
+    guard.watch(first, time.time() + 60)
+    guard.committing(first)  # its outcome is being committed on another thread...
+    second = claim_one(store)
+    guard.watch(second, time.time() + 60)  # ...while the next attempt computes
+    time.sleep(1.5)  # past the lease: only renewals keep them
+    assert store.reap_expired() == []
+    guard.release(first)
+    last = lease_expires(store, first)
+    time.sleep(1.2)
+    assert lease_expires(store, first) == last  # released: no longer renewed
+    assert store.reap_expired() == [first.job.job_id]  # the other one still is
+    guard.release(second)
 
 
 class ExitRecorder:
@@ -119,7 +136,7 @@ def test_a_time_limit_shorter_than_the_heartbeat_wakes_a_sleeping_guard(
     first = claim_one(store)
     guard.watch(first, time.time() + 60)
     time.sleep(0.1)  # the guard sleeps until the first heartbeat, 30 s away
-    guard.release()
+    guard.release(first)
     second = claim_one(store)
     guard.watch(second, time.time() + 0.3)
     assert recorder.called.wait(5), "the guard slept through the time limit"
@@ -127,3 +144,30 @@ def test_a_time_limit_shorter_than_the_heartbeat_wakes_a_sleeping_guard(
     job = store.get_job(second.job.job_id)
     assert job is not None and job.status is JobStatus.FAILED
     assert job.error is not None and job.error["type"] == "time-limit-exceeded"
+
+
+def test_a_stop_waits_for_the_outcome_being_committed(
+    store: JobStore, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """The next attempt passes its time limit while the previous outcome is still being
+    committed: the process stops only once that commit has ended."""
+    import worker.attempt_guard as attempt_guard
+
+    recorder = ExitRecorder()
+    monkeypatch.setattr(attempt_guard, "os", recorder)
+    guard = AttemptGuard(store, SETTINGS, "w")
+    first = claim_one(store)
+    guard.watch(first, time.time() + 60)
+    guard.committing(first)
+    second = claim_one(store)
+    guard.watch(second, time.time() + 0.1)
+    time.sleep(0.6)
+    assert not recorder.called.is_set()  # the time limit passed, but a commit is on
+    job = store.get_job(second.job.job_id)
+    assert job is not None and job.status is JobStatus.FAILED  # already recorded
+    assert store.complete(first.job.job_id, first.lease_token, {"ok": 1}, [])
+    guard.release(first)
+    assert recorder.called.wait(5)
+    assert recorder.codes == [attempt_guard.EXIT_TIME_LIMIT]
+    done = store.get_job(first.job.job_id)
+    assert done is not None and done.status is JobStatus.SUCCESSFUL

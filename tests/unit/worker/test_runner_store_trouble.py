@@ -95,7 +95,7 @@ def test_the_guard_survives_store_errors_and_keeps_renewing(store: JobStore) -> 
         job = store.get_job(job_id)
         assert job is not None and job.status is JobStatus.RUNNING
     finally:
-        guard.release()
+        guard.release(claim)
 
 
 def test_a_commit_waits_out_a_store_outage(store: JobStore) -> None:
@@ -183,11 +183,12 @@ class SlowCommits:
         return bool(self._store.complete(*args, **kwargs))
 
 
-def test_a_commit_behind_keeps_the_lease_and_the_next_claim_waits_for_it(
+def test_a_commit_behind_keeps_the_lease_and_overlaps_the_next_claim(
     store: JobStore,
 ) -> None:
     """With ``commit_behind`` (Celery) execute returns before the commit; the lease is
-    renewed meanwhile, and the next claim sees the job committed."""
+    renewed meanwhile; the next job is claimed and run while the commit goes on, and
+    its own commit waits for the first."""
     first, second = submit_square(store, 2.0), submit_square(store, 3.0)
     slow = SlowCommits(store, delay_s=2.5)
     settings = WorkerSettings(workers=1, heartbeat_seconds=0.1, lease_seconds=1.0)
@@ -198,15 +199,39 @@ def test_a_commit_behind_keeps_the_lease_and_the_next_claim_waits_for_it(
     loop.execute(claim)
     assert time.monotonic() - started < 2.0  # returned while the commit runs
     assert slow.committing.wait(5)
-    time.sleep(1.3)  # past the lease: only renewals keep the job
+    following = loop.claim()  # does not wait for the commit
+    assert following is not None and following.job.job_id == second
+    loop.execute(following)  # computed beside the commit; its commit waits for the first
+    assert time.monotonic() - started >= 2.4
+    time.sleep(1.3)  # past the lease: only renewals keep the second job
     assert store.reap_expired() == []
-    following = loop.claim()  # waits for the commit first
     done = store.get_job(first)
     assert done is not None and done.status is JobStatus.SUCCESSFUL
-    assert following is not None and following.job.job_id == second
-    loop.execute(following)
     loop.settle()
     assert store.get_result(second) == {"square": 9.0, "notes": ["a note"], "paper_errata": []}
+
+
+def test_a_claim_held_back_by_the_commit_in_flight_waits_for_it(store: JobStore) -> None:
+    """Under a running cap of one, the job being committed still counts as running: a
+    claim that finds nothing settles the commit and looks again."""
+    ids = [
+        store.create_job(
+            NewJob("square", {"x": x}, time_limit_s=30, max_attempts=2, owner="alice")
+        )[0].job_id
+        for x in (2.0, 3.0)
+    ]
+    slow = SlowCommits(store, delay_s=0.5)
+    settings = WorkerSettings(workers=1, lease_seconds=5.0, max_running_per_key=1)
+    loop = WorkerLoop(settings, slow, registry(), commit_behind=True)  # type: ignore[arg-type]
+    claim = loop.claim()
+    assert claim is not None and claim.job.job_id == ids[0]
+    loop.execute(claim)
+    following = loop.claim()
+    assert following is not None and following.job.job_id == ids[1]
+    done = store.get_job(ids[0])
+    assert done is not None and done.status is JobStatus.SUCCESSFUL
+    loop.execute(following)
+    loop.settle()
 
 
 def test_a_commit_behind_that_fails_is_logged_and_leaves_the_job_to_a_retry(

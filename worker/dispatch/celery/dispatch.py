@@ -36,7 +36,7 @@ class CeleryDispatch:
         self.store = store
         self.app = create_celery_app(settings)
         self._longest_s = longest_time_limit(settings)
-        self._counting: Any = None  # the broker connection waiting_messages keeps
+        self._kept: Any = None  # the broker connection kept for counting and taking
 
     def dispatch(self, job_id: str, time_limit_s: float) -> None:
         try:
@@ -60,10 +60,7 @@ class CeleryDispatch:
         broker cannot say.  One connection is kept for it (the sweeper asks every sweep
         while jobs are overdue), and dropped on any error."""
         try:
-            if self._counting is None:
-                self._counting = self.app.connection_for_read()
-                self._counting.ensure_connection(max_retries=1)
-            channel = self._counting.channel()
+            channel = self._kept_connection().channel()
             try:
                 _, count, _ = channel.queue_declare(queue=self.settings.queue, passive=True)
             finally:
@@ -72,17 +69,39 @@ class CeleryDispatch:
             return int(count)
         except Exception as exc:  # the queue not declared yet, or the broker away
             log.debug("cannot count the broker's waiting messages: %s", exc)
-            self._drop_counting()
+            self._drop_kept()
             return None
 
-    def _drop_counting(self) -> None:
-        counting, self._counting = self._counting, None
-        if counting is not None:
+    def take_waiting_message(self) -> bool:
+        """Take one waiting message off the queue, acknowledged as it is taken (it is
+        gone); True if there was one, False if none was waiting or the broker cannot
+        say.  Messages are interchangeable (a delivery claims the next job in fair
+        order), so a delivery that runs one more job takes one more message.  On the
+        kept connection, dropped on any error."""
+        try:
+            message = self._kept_connection().default_channel.basic_get(
+                queue=self.settings.queue, no_ack=True
+            )
+            return message is not None
+        except Exception as exc:  # the broker away: this delivery runs no more jobs
+            log.debug("cannot take a waiting message: %s", exc)
+            self._drop_kept()
+            return False
+
+    def _kept_connection(self) -> Any:
+        if self._kept is None:
+            self._kept = self.app.connection_for_read()
+            self._kept.ensure_connection(max_retries=1)
+        return self._kept
+
+    def _drop_kept(self) -> None:
+        kept, self._kept = self._kept, None
+        if kept is not None:
             with suppress(Exception):
-                counting.release()
+                kept.release()
 
     def close(self) -> None:
-        self._drop_counting()
+        self._drop_kept()
         self.app.close()
 
 

@@ -11,21 +11,26 @@ and for Celery.  Messages stay one per job, so there is always a message for eac
 queued job: a claim uses one message and one job, and a message that finds nothing
 to claim is dropped.
 
-**A delivery returns once its job's work is done.**  The outcome is committed on a
-thread of the pool process (``commit_behind``, :class:`worker.runner.WorkerLoop`) while
-Celery acknowledges the message and hands the process its next one; the next claim,
-and the process's shutdown, wait for it.  The lease is renewed until the commit is
-made, so a process that dies in between leaves a job that is retried as always (its
-lease lapses and the sweeper sends it again): the acknowledgement was never what kept
-a job, the store is.
+**A delivery of short jobs runs several** (``DEXLAB_DELIVERY_BATCH_S``): once its job is
+done it claims the next one in fair order, runs it, and takes one waiting message off
+the queue for it, until the time is up or no message waits (:func:`_run_further_jobs`).
+
+**A job's outcome is committed behind it**, on a thread of the pool process
+(``commit_behind``, :class:`worker.runner.WorkerLoop`), while the next job is claimed
+and run, or Celery acknowledges the message and hands the process its next one; the
+next commit, and the process's shutdown, wait for it.  The lease is renewed until the
+commit is made, so a process that dies in between leaves a job that is retried as
+always (its lease lapses and the sweeper sends it again): the acknowledgement was
+never what kept a job, the store is.
 
 When nothing is claimable, the delivered job itself decides: held by another
 attempt's live lease (its process may have just died), the task is retried once the
 lease can have expired; waiting behind its owner's running cap, it is retried shortly;
 finished or dismissed, the delivery is dropped.  Each pool process builds its own
-store connection the first time it runs a task (after the fork).  The worker runs at
-a lower scheduling priority than the API (``DEXLAB_WORKER_NICE``, inherited by the
-pool processes), and its main process runs the sweepers.
+store connection the first time it runs a task (after the fork); the job modules are
+loaded before the fork.  The worker runs at
+a lower scheduling priority than the API (``DEXLAB_WORKER_NICE``, set in each pool
+process), and its main process runs the sweepers.
 
 Logging stays as ``dexlab worker`` configured it (:mod:`worker.logs`): Celery is told
 that logging is set up, so its lines, its task lines (which carry the task ID, the job
@@ -37,6 +42,8 @@ from __future__ import annotations
 import logging
 import os
 import socket
+import time
+from concurrent.futures import Future, ThreadPoolExecutor
 from dataclasses import dataclass
 from typing import Any
 
@@ -45,10 +52,16 @@ from celery.utils.log import current_process_index
 
 from worker.contract import JobStatus
 from worker.dispatch.celery.app import create_celery_app
-from worker.dispatch.celery.dispatch import CeleryDispatch, Sweeper
+from worker.dispatch.celery.dispatch import (
+    CeleryDispatch,
+    Sweeper,
+    hard_time_limit,
+    longest_time_limit,
+)
+from worker.errors import StoreUnavailable
 from worker.logs import log_context, stdout_as_log_lines
 from worker.pool_process import lower_priority
-from worker.processes import worker_registry
+from worker.processes import preload_job_modules, worker_registry
 from worker.retention import RetentionSweeper
 from worker.runner import WorkerLoop, worker_id_for
 from worker.settings import WorkerSettings
@@ -63,9 +76,12 @@ log = logging.getLogger("dexlab.celery")
 class _ProcessRuntime:
     pid: int
     loop: WorkerLoop
+    sender: _Sender
+    #: How long a delivery may go on running further jobs (seconds; 0: never).
+    batch_s: float
 
 
-def _loop_for_this_process(app: Celery) -> WorkerLoop:
+def _runtime_for_this_process(app: Celery) -> _ProcessRuntime:
     runtime: _ProcessRuntime | None = getattr(app, "dexlab_runtime", None)
     if runtime is None or runtime.pid != os.getpid():
         settings: WorkerSettings = app.dexlab_settings
@@ -81,15 +97,25 @@ def _loop_for_this_process(app: Celery) -> WorkerLoop:
             on_queued=sender.send,
             commit_behind=True,
         )
-        runtime = _ProcessRuntime(os.getpid(), loop)
+        runtime = _ProcessRuntime(os.getpid(), loop, sender, delivery_batch_s(settings))
         app.dexlab_runtime = runtime
-    return runtime.loop
+    return runtime
 
 
 def run_delivered_job(app: Celery, job_id: str) -> float | None:
     """Run the delivered job if it can be claimed; seconds to retry after, or None."""
     with log_context(job_id=job_id):
         return _run_delivered_job(app, job_id)
+
+
+def delivery_batch_s(settings: WorkerSettings) -> float:
+    """How long a delivery may go on running further jobs: ``delivery_batch_s``, but
+    at most half the slack between a message's hard time limit and the longest job (a
+    job started late in a delivery must still end inside its message's limit, and so
+    inside the broker's redelivery window)."""
+    longest = longest_time_limit(settings)
+    slack = hard_time_limit(settings, longest) - longest
+    return max(0.0, min(settings.delivery_batch_s, slack / 2))
 
 
 class _Sender:
@@ -100,6 +126,8 @@ class _Sender:
         self._settings = settings
         self._store = store
         self._dispatch: CeleryDispatch | None = None
+        self._taking: CeleryDispatch | None = None  # used on the taker thread alone
+        self._taker: ThreadPoolExecutor | None = None
 
     def send(self, job_ids: Any) -> None:
         if self._dispatch is None:
@@ -107,9 +135,24 @@ class _Sender:
         for job_id in job_ids:
             self._dispatch.dispatch(job_id, 0.0)
 
+    def take_behind(self) -> Future[bool]:
+        """Take one waiting message off the queue (``CeleryDispatch``), on a thread of
+        its own (one broker round trip less before the next claim); its future says
+        whether one was waiting."""
+        if self._taker is None:
+            self._taker = ThreadPoolExecutor(1, thread_name_prefix="take")
+        return self._taker.submit(self._take)
+
+    def _take(self) -> bool:
+        if self._taking is None:
+            self._taking = CeleryDispatch(self._settings, self._store)
+        return self._taking.take_waiting_message()
+
 
 def _run_delivered_job(app: Celery, job_id: str) -> float | None:
-    loop = _loop_for_this_process(app)
+    runtime = _runtime_for_this_process(app)
+    loop = runtime.loop
+    until = time.monotonic() + runtime.batch_s
     claim = loop.claim()  # the next job in fair order, whichever message brought us here
     if claim is not None:
         # Its lines carry the job it runs (the delivery's task ID is on Celery's lines).
@@ -117,6 +160,7 @@ def _run_delivered_job(app: Celery, job_id: str) -> float | None:
             if claim.job.job_id != job_id:
                 log.info("job %s runs on another job's delivery (fair order)", claim.job.job_id)
             loop.execute(claim)
+        _run_further_jobs(runtime, until)
         return None
     attempt = loop.store.claim_job(
         job_id,
@@ -141,6 +185,36 @@ def _run_delivered_job(app: Celery, job_id: str) -> float | None:
         attempt.status.value if attempt.status else "unknown job",
     )
     return None
+
+
+def _run_further_jobs(runtime: _ProcessRuntime, until: float) -> None:
+    """Until ``until`` (a ``time.monotonic()``), while messages wait: claim the next job
+    in fair order, run it, and take a waiting message off the queue for it (on a thread,
+    while the next job is claimed).
+
+    Short jobs then run back to back, their outcomes committed behind the next claim,
+    instead of one per delivery through Celery's main process (a broker round trip to
+    acknowledge and another to fetch, for a job of a millisecond).  Messages and queued
+    jobs stay paired: a job run here takes one message, and when none waited (the rest
+    are on their way to other processes) the delivery ends; the surplus message that
+    arrives later finds nothing and is dropped.  A process that dies here is what
+    it always was: the delivery's own message goes back to the queue (it is
+    acknowledged when the delivery ends), and the running job's lease lapses and the
+    sweeper sends it again."""
+    taken: Future[bool] | None = None
+    while time.monotonic() < until:
+        if taken is not None and not taken.result():  # no message waited for the last
+            return
+        try:
+            claim = runtime.loop.claim()
+        except StoreUnavailable as exc:  # what ran is committed or retried; stop here
+            log.warning("the store is unavailable (%s); this delivery runs no more jobs", exc)
+            return
+        if claim is None:
+            return
+        with log_context(job_id=claim.job.job_id):
+            runtime.loop.execute(claim)
+        taken = runtime.sender.take_behind()
 
 
 def _settle_at_exit(app: Celery) -> None:
@@ -174,6 +248,11 @@ def run_celery_worker(
         weak=False,
         dispatch_uid="dexlab-nice",
     )
+    # Loaded once here, before Celery forks its pool: a pool process (and one started in
+    # place of a process that stopped) has them from the start, not on its first job.
+    started = time.monotonic()
+    modules = preload_job_modules()
+    log.info("loaded %d job modules in %.2f s", len(modules), time.monotonic() - started)
     store = open_store(settings.resolved_store_url(), retry_s=settings.store_retry_seconds)
     app = create_celery_app(settings)
     signals.worker_process_shutdown.connect(

@@ -117,3 +117,17 @@ def test_each_celery_app_has_its_own_task_and_no_duplicate_warning() -> None:
         tasks = [app.tasks[RUN_JOB] for app in apps]
     assert len({id(task) for task in tasks}) == 3
     assert all(task.app is app for task, app in zip(tasks, apps, strict=True))
+
+
+def test_a_delivery_runs_further_jobs_only_inside_its_messages_time_limit() -> None:
+    """A job started late in a delivery must still end inside the message's hard time
+    limit: the batch gets at most half the slack between that limit and the longest
+    job."""
+    from worker.dispatch.celery.worker import delivery_batch_s
+
+    redis = "redis://127.0.0.1:6379/0"
+    assert delivery_batch_s(WorkerSettings(broker_url=redis)) == 0.05
+    assert delivery_batch_s(WorkerSettings(broker_url=redis, delivery_batch_s=0)) == 0
+    tight = WorkerSettings(broker_url=redis, broker_visibility_timeout_s=1.0)
+    # Jobs capped at 0.9 s, messages' hard limit 0.95 s: 0.05 s of slack, half of it.
+    assert abs(delivery_batch_s(tight) - 0.025) < 1e-9
