@@ -15,10 +15,13 @@ without plots: about 0.1 ms of science, no files):
 
 Raw Celery on the same broker and settings (JSON, late acks, prefetch 1, two prefork
 processes, ``bench/raw_celery.py``) drains the same burst of no-op tasks; the ratio
-dexlab / raw is printed per broker (target: at least 0.5).  The embedded target is at
-least 300 jobs/s.
+dexlab / raw is printed per broker (target: at least 0.5).  Raw Celery runs one task per
+delivery; dexlab's Celery workers run short jobs several to a delivery, taking a
+waiting message for each (``DEXLAB_DELIVERY_BATCH_S``; ``--delivery-batch-s 0`` measures
+one job per delivery).  The embedded target is at least 300 jobs/s.
 
 Usage: python bench/backend_overhead.py [--burst 1500] [--rounds 3] [--latency-jobs 20]
+       [--backends ...] [--delivery-batch-s 0]  (0: one job per Celery delivery)
 (PostgreSQL, Redis and RabbitMQ must be reachable on loopback.)
 """
 
@@ -87,8 +90,12 @@ def wait_all(dep: Deployment, ids: list[str]) -> list[dict[str, Any]]:
     return [wait_terminal(dep.client, job_id, timeout=600) for job_id in ids]
 
 
-def measure_dexlab(backend: str, burst: int, latency_jobs: int) -> dict[str, float]:
+def measure_dexlab(
+    backend: str, burst: int, latency_jobs: int, batch_s: str | None
+) -> dict[str, float]:
     env = {"DEXLAB_POLL_SECONDS": "0.05"}
+    if batch_s is not None:
+        env["DEXLAB_DELIVERY_BATCH_S"] = batch_s
     with (
         tempfile.TemporaryDirectory() as tmp,
         deployment(backend, Path(tmp), workers=0, env=env) as dep,
@@ -158,12 +165,18 @@ def main() -> None:
     parser.add_argument("--burst", type=int, default=1500)
     parser.add_argument("--rounds", type=int, default=3, help="alternating runs (medians)")
     parser.add_argument("--backends", nargs="*", default=list(BACKENDS))
+    parser.add_argument(
+        "--delivery-batch-s",
+        help="DEXLAB_DELIVERY_BATCH_S for the Celery workers (0: one job per delivery)",
+    )
     args = parser.parse_args()
     runs: dict[str, list[dict[str, float]]] = {b: [] for b in args.backends}
     raws: dict[str, list[float]] = {b: [] for b in args.backends if b in BROKERS}
     for _ in range(args.rounds):  # alternating, so a slow spell of the machine hits both
         for backend in args.backends:
-            runs[backend].append(measure_dexlab(backend, args.burst, args.latency_jobs))
+            runs[backend].append(
+                measure_dexlab(backend, args.burst, args.latency_jobs, args.delivery_batch_s)
+            )
             if backend in raws:
                 raws[backend].append(measure_raw(backend, args.burst))
     rows = {b: {k: statistics.median(r[k] for r in rs) for k in rs[0]} for b, rs in runs.items()}
