@@ -28,9 +28,8 @@ attempt's live lease (its process may have just died), the task is retried once 
 lease can have expired; waiting behind its owner's running cap, it is retried shortly;
 finished or dismissed, the delivery is dropped.  Each pool process builds its own
 store connection the first time it runs a task (after the fork); the job modules are
-loaded before the fork.  The worker runs at
-a lower scheduling priority than the API (``DEXLAB_WORKER_NICE``, set in each pool
-process), and its main process runs the sweepers.
+loaded before the fork.  The pool processes run at a lower scheduling priority than
+the API (``DEXLAB_WORKER_NICE``), and the main process runs the sweepers.
 
 Logging stays as ``dexlab worker`` configured it (:mod:`worker.logs`): Celery is told
 that logging is set up, so its lines, its task lines (which carry the task ID, the job
