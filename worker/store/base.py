@@ -247,6 +247,10 @@ class JobStore(Protocol):
     def undispatched(self, older_than_s: float, limit: int = 100) -> list[str]:
         """Accepted jobs not dispatched within ``older_than_s`` (lost messages)."""
 
+    def take_overdue(self, job_ids: Sequence[str], older_than_s: float) -> list[str]:
+        """Those of these jobs still undispatched within ``older_than_s``, each marked
+        dispatched now (so that of several sweepers, one re-sends each)."""
+
     def accepted_count(self, bound: int) -> int:
         """Accepted jobs (chunks included), counted up to ``bound``."""
 

@@ -50,6 +50,25 @@ class Bookkeeping:
         return [r["job_id"] for r in rows]
 
     @retrying
+    def take_overdue(self, job_ids: Sequence[str], older_than_s: float) -> list[str]:
+        """Of these jobs, those still accepted and dispatched (or created) over
+        ``older_than_s`` ago, each marked dispatched now by the same statement: of
+        several sweepers picking the same overdue jobs at once, one re-sends each."""
+        now = time.time()
+        taken = []
+        with self._write() as conn:
+            for job_id in job_ids:
+                cur = self._exec(
+                    conn,
+                    "UPDATE jobs SET dispatched = ? WHERE job_id = ? AND status = ?"
+                    " AND COALESCE(dispatched, created) < ?",
+                    (now, job_id, _ACCEPTED, now - older_than_s),
+                )
+                if cur.rowcount == 1:
+                    taken.append(job_id)
+        return taken
+
+    @retrying
     def accepted_count(self, bound: int) -> int:
         """Accepted jobs (chunks included), counted up to ``bound``."""
         rows = self._all(

@@ -172,15 +172,19 @@ class Sweeper(threading.Thread):
         fair order whichever job its message names, so messages are interchangeable:
         while the queue holds one for every waiting job, none was lost, however long
         the backlog (re-sending would only pile up duplicates).  When the broker cannot
-        say, every overdue job is sent again (duplicates are dropped on delivery)."""
-        overdue = self.store.undispatched(self.settings.redispatch_after_s)
+        say, every overdue job is sent again (duplicates are dropped on delivery).  The
+        jobs chosen are marked dispatched in the store as they are chosen, only if still
+        overdue: of the sweepers (the API's, each worker's) choosing at once, one
+        re-sends each."""
+        after_s = self.settings.redispatch_after_s
+        overdue = self.store.undispatched(after_s)
         if not overdue:
             return []
         waiting = self.dispatcher.waiting_messages()
-        if waiting is None:
-            return overdue
-        missing = self.store.accepted_count(waiting + len(overdue)) - waiting
-        return overdue[: max(0, missing)]
+        if waiting is not None:
+            missing = self.store.accepted_count(waiting + len(overdue)) - waiting
+            overdue = overdue[: max(0, missing)]
+        return self.store.take_overdue(overdue, after_s) if overdue else []
 
     def run(self) -> None:
         while not self._stopping.wait(self.settings.sweep_seconds):

@@ -94,6 +94,41 @@ def test_sweeper_resends_only_what_the_brokers_queue_lacks(tmp_path: Path) -> No
     assert store.accepted_count(2) == 2 and store.accepted_count(10) == 4
 
 
+def test_sweepers_sweeping_at_once_resend_the_deficit_once(tmp_path: Path) -> None:
+    """The API's sweeper and each worker's see the same deficit at the same instant
+    and pick the same overdue jobs: between them they re-send each once, not once
+    each."""
+    import threading
+    from typing import Any
+
+    store = open_store(f"sqlite:///{tmp_path / 'j.db'}")
+    jobs = [store.create_job(NewJob("p", {}, time_limit_s=30, max_attempts=3))[0]
+            for _ in range(6)]  # fmt: skip
+    time.sleep(0.02)
+    together = threading.Barrier(3)
+
+    class AtOnce:
+        """The store, except that every sweeper has chosen before any takes."""
+
+        def __getattr__(self, name: str) -> Any:
+            return getattr(store, name)
+
+        def take_overdue(self, job_ids: list[str], older_than_s: float) -> list[str]:
+            together.wait(5)
+            return store.take_overdue(job_ids, older_than_s)
+
+    fakes = [RecordingDispatch(waiting=2) for _ in range(3)]  # four messages were lost
+    settings = WorkerSettings(redispatch_after_s=0.01)
+    sweepers = [Sweeper(settings, AtOnce(), fake) for fake in fakes]  # type: ignore[arg-type]
+    threads = [threading.Thread(target=s.sweep) for s in sweepers]
+    for t in threads:
+        t.start()
+    for t in threads:
+        t.join()
+    sent = [job_id for fake in fakes for job_id, _ in fake.sent]
+    assert sorted(sent) == sorted(j.job_id for j in jobs[:4])
+
+
 def test_time_limits_stay_below_the_brokers_redelivery_window() -> None:
     assert WorkerSettings().time_limit_for(1800) == 1800
     assert WorkerSettings(max_time_limit_s=60).time_limit_for(1800) == 60

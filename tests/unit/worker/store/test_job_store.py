@@ -219,6 +219,34 @@ def test_dispatch_bookkeeping_and_reaping(store: JobStore) -> None:
     assert a.job_id in store.undispatched(60.0)  # requeued jobs need a new dispatch
 
 
+def test_overdue_jobs_are_taken_for_a_resend_once(store: JobStore) -> None:
+    """``take_overdue`` marks the jobs it returns dispatched: asked again at once, or by
+    several sweepers at the same instant, it gives each job out once."""
+    import threading
+
+    a, b, c = (store.create_job(new_job())[0].job_id for _ in range(3))
+    time.sleep(0.3)
+    store.mark_dispatched(c)  # just sent: not overdue
+    assert store.take_overdue([a, b, c], 0.2) == [a, b]
+    assert store.take_overdue([a, b, c], 0.2) == []  # marked just now
+    time.sleep(0.3)
+    assert store.claim_job(a, "w", 10).claim is not None  # running: never re-sent
+    assert store.take_overdue([a, b, c], 0.2) == [b, c]
+
+    ids = [store.create_job(new_job())[0].job_id for _ in range(20)]
+    time.sleep(0.3)
+    taken: list[list[str]] = []
+    sweepers = [
+        threading.Thread(target=lambda: taken.append(store.take_overdue(ids, 0.2)))
+        for _ in range(4)
+    ]
+    for t in sweepers:
+        t.start()
+    for t in sweepers:
+        t.join()
+    assert sorted(job_id for share in taken for job_id in share) == sorted(ids)
+
+
 def test_concurrent_claims_never_share_a_job(store: JobStore) -> None:
     import threading
 
