@@ -243,7 +243,7 @@ def preload_job_modules() -> list[str]:
     import worker.families as families
     import worker.studies as studies
 
-    worker_registry()
+    worker_registry()  # the families' own modules (specs, costs, examples)
     packages = [
         f"{m.name}.jobs" for m in pkgutil.iter_modules(families.__path__, "worker.families.")
     ]

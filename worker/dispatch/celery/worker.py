@@ -119,33 +119,24 @@ def delivery_batch_s(settings: WorkerSettings) -> float:
 
 class _Sender:
     """Sends the jobs a pool process queued (a study's chunks, a study to assemble):
-    one message each, as for a submission (the broker connection made on first use)."""
+    one message each, as for a submission; and takes waiting messages off the queue
+    for a delivery's further jobs (broker connections made on first use)."""
 
     def __init__(self, settings: WorkerSettings, store: Any) -> None:
-        self._settings = settings
-        self._store = store
-        self._dispatch: CeleryDispatch | None = None
-        self._taking: CeleryDispatch | None = None  # used on the taker thread alone
+        self._dispatch = CeleryDispatch(settings, store)
         self._taker: ThreadPoolExecutor | None = None
 
     def send(self, job_ids: Any) -> None:
-        if self._dispatch is None:
-            self._dispatch = CeleryDispatch(self._settings, self._store)
         for job_id in job_ids:
             self._dispatch.dispatch(job_id, 0.0)
 
     def take_behind(self) -> Future[bool]:
-        """Take one waiting message off the queue (``CeleryDispatch``), on a thread of
-        its own (one broker round trip less before the next claim); its future says
-        whether one was waiting."""
+        """Take one waiting message off the queue (``CeleryDispatch``, whose kept
+        connection only this thread uses), on a thread of its own (one broker round
+        trip less before the next claim); its future says whether one was waiting."""
         if self._taker is None:
             self._taker = ThreadPoolExecutor(1, thread_name_prefix="take")
-        return self._taker.submit(self._take)
-
-    def _take(self) -> bool:
-        if self._taking is None:
-            self._taking = CeleryDispatch(self._settings, self._store)
-        return self._taking.take_waiting_message()
+        return self._taker.submit(self._dispatch.take_waiting_message)
 
 
 def _run_delivered_job(app: Celery, job_id: str) -> float | None:
