@@ -353,10 +353,10 @@ def test_chaos_loses_no_job_and_stores_each_result_once(backend: str, tmp_path: 
         successful = [d for d in finals.values() if d["status"] == "successful"]
         assert len(successful) >= 50, [d["status"] for d in finals.values()]
         assert finals[frozen_job]["attempts"] >= 2, finals[frozen_job]
-        if backend == "embedded":  # the pool killed the frozen process after a lease
-            assert frozen.after_s is not None, "the frozen process was never killed"
-            assert frozen.after_s < LEASE_S + 3, frozen.after_s
-            assert "showed no sign of life" in full_log(dep)
+        # The pool (or the Celery worker's watchdog) killed the frozen process after a lease.
+        assert frozen.after_s is not None, "the frozen process was never killed"
+        assert frozen.after_s < LEASE_S + 3, frozen.after_s
+        assert "showed no sign of life" in full_log(dep)
         # One stored result per successful job: the committed attempt's, nothing else
         # (a job's clean-up follows its commit by a moment).
         wait_stale_attempt_settled(dep, tag, frozen_job, frozen_pid)
