@@ -13,6 +13,11 @@ neither, and after ``frozen_after_s`` (a lease, at least 2 s: the guard thread's
 renewals stopped as long ago) it is SIGKILLed.  Its pool then starts a new process in
 its place (the local pool's supervisor, or billiard under Celery, whose message goes
 back to the queue), and the job it held is retried, its lease having lapsed.
+
+Only silence the watch saw counts: a look that comes more than half the threshold
+after the previous one (the supervisor itself was stopped or starved, e.g. a whole
+machine paused and resumed with its processes) starts counting afresh, so a machine
+that resumes does not kill its processes before they could beat.
 """
 
 from __future__ import annotations
@@ -104,6 +109,7 @@ class _Seen:
     beats: float
     cpu_ticks: int | None
     since: float
+    looked: float
 
 
 class FrozenWatch:
@@ -136,9 +142,11 @@ class FrozenWatch:
             or seen.pid != pid
             or seen.beats != beats
             or (cpu_ticks is not None and cpu_ticks != seen.cpu_ticks)
+            or now - seen.looked > self.frozen_after_s / 2  # the watch was not looking
         ):
-            self._seen[slot] = _Seen(pid, beats, cpu_ticks, now)
+            self._seen[slot] = _Seen(pid, beats, cpu_ticks, since=now, looked=now)
             return pid, 0.0
+        seen.looked = now
         return pid, now - seen.since
 
     def kill_if_frozen(self, slot: int) -> int | None:

@@ -14,7 +14,7 @@ from contextlib import suppress
 
 import pytest
 
-from worker.liveness import LivenessBoard, Watchdog, frozen_after_s
+from worker.liveness import FrozenWatch, LivenessBoard, Watchdog, frozen_after_s
 from worker.settings import WorkerSettings
 
 pytestmark = pytest.mark.slow
@@ -86,6 +86,37 @@ def test_frozen_processes_are_killed_and_busy_or_idle_ones_are_not() -> None:
     assert children[STOPPED].exitcode == children[STUCK].exitcode == -signal.SIGKILL
     # The busy child held the GIL (its beats stopped) longer than the threshold.
     assert longest_stall > FROZEN_AFTER_S + 0.5, longest_stall
+
+
+def test_silence_the_watch_did_not_see_is_not_counted() -> None:
+    """A supervisor that was itself stopped (a whole machine paused, then resumed) does
+    not kill a process on its first look after: it counts the silence from there."""
+    ctx = multiprocessing.get_context("spawn")
+    board = LivenessBoard(1, ctx)
+    child = ctx.Process(target=_child, args=(board, IDLE), daemon=True)
+    child.start()
+    try:
+        deadline = time.monotonic() + 30
+        while board.read(IDLE)[1] < 1:
+            assert time.monotonic() < deadline, "the child never started beating"
+            time.sleep(0.02)
+        watch = FrozenWatch(board, frozen_after_s=1.0)
+        assert child.pid is not None
+        os.kill(child.pid, signal.SIGSTOP)
+        assert watch.kill_if_frozen(IDLE) is None
+        time.sleep(1.5)  # the supervisor is not looking: "paused" with its processes
+        resumed_at = time.monotonic()
+        while watch.kill_if_frozen(IDLE) is None:
+            assert time.monotonic() - resumed_at < 5, "never killed"
+            time.sleep(0.05)
+        assert time.monotonic() - resumed_at >= 1.0
+        child.join(5)
+        assert child.exitcode == -signal.SIGKILL
+    finally:
+        with suppress(ProcessLookupError):
+            if child.pid is not None:
+                os.kill(child.pid, signal.SIGKILL)
+        child.join(5)
 
 
 def test_frozen_after_is_a_lease_and_at_least_two_seconds() -> None:
