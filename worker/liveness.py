@@ -56,8 +56,9 @@ class LivenessBoard:
     """Per slot, the process in it (its pid) and its count of beats, in shared memory.
 
     Made by the supervisor before its processes start (handed to a spawned process as
-    an argument; a forked one inherits it); only the process in a slot writes to it,
-    once it has :meth:`entered <enter>` it.
+    an argument; a forked one inherits it).  A process :meth:`enters <enter>` its slot
+    (the local pool's supervisor enters a process it started at once, so that one
+    frozen before its first beat is watched too); then only that process writes there.
     """
 
     def __init__(self, slots: int, context: BaseContext | None = None) -> None:
