@@ -3,9 +3,10 @@
 When a process dies (killed, crashed, or stopped itself after a dismissal or a time
 limit) the supervisor expires the leases it held, so its job is retried at once by the
 next claim rather than after the lease runs out, and starts a new process in its slot.
-A process that shows no sign of life for a lease (frozen, e.g. SIGSTOPped, perhaps
-holding SQLite's write lock) is killed.  A process that keeps dying at start-up (a
-broken store) is restarted after growing pauses (capped), and the log says why.
+A process that shows no sign of life for a lease (no beat, no CPU time: frozen, e.g.
+SIGSTOPped, perhaps holding SQLite's write lock; :mod:`worker.liveness`) is killed.
+A process that keeps dying at start-up (a broken store) is restarted after growing
+pauses (capped), and the log says why.
 
 The process in slot 0 prefers cheap jobs (:mod:`worker.store.scheduling`), so small
 jobs are not starved by expensive ones; every process runs at a lower scheduling
@@ -15,18 +16,16 @@ runs the retention sweeper (:mod:`worker.retention`).
 
 from __future__ import annotations
 
-import contextlib
 import logging
 import multiprocessing
 import os
-import signal
 import threading
 import time
 from dataclasses import dataclass, field
 from multiprocessing.process import BaseProcess
-from typing import Any
 
 from worker.errors import StoreUnavailable
+from worker.liveness import FrozenWatch, LivenessBoard, frozen_after_s
 from worker.pool_process import EXIT_STARTUP, worker_main
 from worker.retention import RetentionSweeper
 from worker.runner import worker_id_for
@@ -46,11 +45,10 @@ MAX_BACKOFF_S = 30.0
 
 @dataclass
 class _Slot:
-    """One place in the pool: its process, when it started, its sign of life."""
+    """One place in the pool: its process, when it started, its restarts."""
 
     proc: BaseProcess | None = None
     started: float = 0.0
-    liveness: Any = None
     early_deaths: int = 0
     next_start: float = 0.0
     restarts: int = 0
@@ -65,6 +63,8 @@ class WorkerPool:
         self.store = store
         self._ctx = multiprocessing.get_context("spawn")
         self._slots = [_Slot() for _ in range(settings.workers)]
+        self._board = LivenessBoard(settings.workers, self._ctx)
+        self._frozen = FrozenWatch(self._board, frozen_after_s(settings))
         self._lock = threading.Lock()
         self._stopping = threading.Event()
         self._monitor: threading.Thread | None = None
@@ -119,13 +119,12 @@ class WorkerPool:
     # -- internals ------------------------------------------------------------------
     def _spawn(self, index: int) -> None:
         slot = self._slots[index]
-        slot.liveness = self._ctx.Value("d", 0.0, lock=False)
         proc = self._ctx.Process(
             target=worker_main,
             args=(
                 self.settings.model_dump(mode="json"),
                 os.getpid(),
-                slot.liveness,
+                (self._board, index),
                 logging.getLogger().getEffectiveLevel(),
                 index == 0,  # the slot that prefers cheap jobs
             ),
@@ -133,6 +132,8 @@ class WorkerPool:
             daemon=False,
         )
         proc.start()
+        assert proc.pid is not None
+        self._board.enter(index, proc.pid)  # watched from now, before its first beat
         slot.proc = proc
         slot.started = time.monotonic()
         log.info("started worker process %s in slot %d", proc.pid, index)
@@ -152,26 +153,6 @@ class WorkerPool:
                 "worker %s died holding %d job(s); they will be retried", worker_id, expired
             )
         return True
-
-    def _kill_if_frozen(self, index: int, slot: _Slot) -> None:
-        proc = slot.proc
-        if proc is None or proc.pid is None or slot.liveness is None:
-            return
-        last = float(slot.liveness.value)
-        reference = last if last > 0 else None
-        silent = (
-            time.time() - reference if reference is not None else (time.monotonic() - slot.started)
-        )
-        if silent > max(self.settings.lease_seconds, 2.0):
-            log.error(
-                "worker process %s in slot %d showed no sign of life for %.1f s "
-                "(frozen?); killing it",
-                proc.pid,
-                index,
-                silent,
-            )
-            with contextlib.suppress(ProcessLookupError):
-                os.kill(proc.pid, signal.SIGKILL)
 
     def _on_exit(self, index: int, slot: _Slot) -> None:
         proc = slot.proc
@@ -211,7 +192,7 @@ class WorkerPool:
                     return
                 for index, slot in enumerate(self._slots):
                     if slot.proc is not None and slot.proc.is_alive():
-                        self._kill_if_frozen(index, slot)
+                        self._frozen.kill_if_frozen(index)
                         continue
                     if slot.proc is not None:
                         self._on_exit(index, slot)

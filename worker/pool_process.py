@@ -3,8 +3,9 @@ every worker process runs at.
 
 Worker processes run at a lower scheduling priority than the API
 (:func:`lower_priority`), so requests stay quick while every core runs jobs.  A pool
-process tells its supervisor that it is alive twice a second from a thread of its own,
-whatever the job does, so a frozen (e.g. SIGSTOPped) process is found and killed.
+process beats in its slot of the supervisor's liveness board twice a second from a
+thread of its own, whatever the job does, so a frozen (e.g. SIGSTOPped) process is
+found and killed (:mod:`worker.liveness`).
 """
 
 from __future__ import annotations
@@ -13,10 +14,9 @@ import logging
 import os
 import signal
 import sys
-import threading
-import time
 from typing import Any
 
+from worker.liveness import LivenessBoard
 from worker.logs import configure_logging
 from worker.processes import worker_registry
 from worker.runner import WorkerLoop
@@ -30,14 +30,6 @@ log = logging.getLogger("dexlab.worker")
 
 #: Exit code of a worker process that could not start (e.g. the store cannot be opened).
 EXIT_STARTUP = 6
-
-
-def _beat_forever(liveness: Any) -> None:
-    """Tell the supervisor this process runs, twice a second, whatever the job does (a
-    frozen, e.g. SIGSTOPped, process stops beating and is killed)."""
-    while True:
-        liveness.value = time.time()
-        time.sleep(0.5)
 
 
 def lower_priority(increment: int, what: str) -> int:
@@ -59,18 +51,18 @@ def lower_priority(increment: int, what: str) -> int:
 def worker_main(
     settings_data: dict[str, Any],
     parent_pid: int | None = None,
-    liveness: Any = None,
+    liveness: tuple[LivenessBoard, int] | None = None,
     log_level: int = logging.INFO,
     prefer_cheap: bool = False,
 ) -> None:
-    """Entry point of a pool process (spawned): lower its priority, build resources,
-    then loop (taking cheap jobs first with ``prefer_cheap``).  It logs at its
-    supervisor's ``log_level``, in ``DEXLAB_LOG_FORMAT`` (inherited)."""
+    """Entry point of a pool process (spawned): beat in its ``(board, slot)``, lower
+    its priority, build resources, then loop (taking cheap jobs first with
+    ``prefer_cheap``).  It logs at its supervisor's ``log_level``, in
+    ``DEXLAB_LOG_FORMAT`` (inherited)."""
     configure_logging(level=log_level)
     if liveness is not None:
-        threading.Thread(
-            target=_beat_forever, args=(liveness,), name="liveness", daemon=True
-        ).start()
+        board, slot = liveness
+        board.start_beating(slot)
     settings = WorkerSettings.model_validate(settings_data)
     lower_priority(settings.worker_nice, f"worker process {os.getpid()}")
     try:

@@ -69,7 +69,9 @@ def server(
 #: Modules whose tests measure time (leases, outages, latencies) or kill processes on
 #: purpose: under pytest-xdist they run one after another on one process, beside the
 #: other modules (see `pytest_xdist_make_scheduler`).
-TIMED_MODULES = frozenset({"test_faults", "test_server", "test_fairness", "test_pages_events"})
+TIMED_MODULES = frozenset(
+    {"test_faults", "test_server", "test_fairness", "test_pages_events", "test_frozen_workers"}
+)
 TIMED = "timed"
 
 

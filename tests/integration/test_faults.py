@@ -353,10 +353,10 @@ def test_chaos_loses_no_job_and_stores_each_result_once(backend: str, tmp_path: 
         successful = [d for d in finals.values() if d["status"] == "successful"]
         assert len(successful) >= 50, [d["status"] for d in finals.values()]
         assert finals[frozen_job]["attempts"] >= 2, finals[frozen_job]
-        if backend == "embedded":  # the pool killed the frozen process after a lease
-            assert frozen.after_s is not None, "the frozen process was never killed"
-            assert frozen.after_s < LEASE_S + 3, frozen.after_s
-            assert "showed no sign of life" in full_log(dep)
+        # The pool (or the Celery worker's watchdog) killed the frozen process after a lease.
+        assert frozen.after_s is not None, "the frozen process was never killed"
+        assert frozen.after_s < LEASE_S + 3, frozen.after_s
+        assert "showed no sign of life" in full_log(dep)
         # One stored result per successful job: the committed attempt's, nothing else
         # (a job's clean-up follows its commit by a moment).
         wait_stale_attempt_settled(dep, tag, frozen_job, frozen_pid)
@@ -457,8 +457,22 @@ def test_postgres_connections_cut_mid_job(tmp_path: Path) -> None:
         assert wait_terminal(client, submit.json()["jobID"])["status"] == "successful"
 
 
-def freeze_when_writing(store_url: str, writers: dict[str, int]) -> dict[str, int]:
-    """SIGSTOP each job's worker process as soon as the first chunk of its results is
+def pause_worker_of(dep: Deployment, pid: int) -> list[int]:
+    """Pause the `dexlab worker` whose pool process ``pid`` is, as a paused VM would be:
+    the pool process first (it is mid-write), then the rest of it (its main process,
+    whose watchdog would otherwise kill a frozen pool process); the pids paused."""
+    leader = next(w.pid for w in dep.workers if pid in group_pids(w.pid))
+    freeze(pid)
+    rest = [p for p in group_pids(leader) if p != pid]
+    for other in rest:
+        freeze(other)
+    return [pid, *rest]
+
+
+def freeze_when_writing(
+    store_url: str, writers: dict[str, int], pause: Callable[[int], object] = freeze
+) -> dict[str, int]:
+    """``pause`` each job's worker process as soon as the first chunk of its results is
     stored (mid-write); how many chunks each had then."""
     import psycopg
 
@@ -474,19 +488,19 @@ def freeze_when_writing(store_url: str, writers: dict[str, int]) -> dict[str, in
             ).fetchall()
             for job_id, count in rows:
                 if job_id not in frozen:
-                    freeze(writers[job_id])
+                    pause(writers[job_id])
                     frozen[job_id] = int(count)
             time.sleep(0.002)
     return frozen
 
 
 def test_stale_attempts_resumed_mid_write_leave_no_chunks(tmp_path: Path) -> None:
-    """Two Celery worker processes are frozen (a paused VM) while they write their
-    results' chunks; their leases lapse and the third process commits both jobs.  When
-    they resume, their stale attempts must leave nothing behind: only the committed
+    """Two Celery workers are paused whole (a paused VM) while their pool processes write
+    their results' chunks; their leases lapse and the third worker commits both jobs.
+    When they resume, their stale attempts must leave nothing behind: only the committed
     attempts' chunks remain."""
     require_packages("psycopg")
-    with fault_deployment("celery-redis", tmp_path, workers=3) as (dep, tag):
+    with fault_deployment("celery-redis", tmp_path, worker_processes=3) as (dep, tag):
         client = dep.client
         store_url = dep.env["DEXLAB_STORE_URL"]
         ids = [
@@ -500,15 +514,19 @@ def test_stale_attempts_resumed_mid_write_leave_no_chunks(tmp_path: Path) -> Non
             for job_id in ids
         }
         assert set(writers.values()) <= deployment_pids(dep) and len(set(writers.values())) == 2
+        paused: list[int] = []
         try:
-            frozen = freeze_when_writing(store_url, writers)
+            frozen = freeze_when_writing(
+                store_url, writers, lambda pid: paused.extend(pause_worker_of(dep, pid))
+            )
             assert all(n < 15 for n in frozen.values()), f"froze too late: {frozen} of ~20"
             for job_id in ids:
                 final = wait_terminal(client, job_id, timeout=60)
                 assert final["status"] == "successful" and final["attempts"] == 2, final
         finally:
-            for pid in writers.values():
-                os.kill(pid, signal.SIGCONT)
+            for pid in paused:
+                with suppress(ProcessLookupError):
+                    os.kill(pid, signal.SIGCONT)
         for job_id, pid in writers.items():
             wait_stale_attempt_settled(dep, tag, job_id, pid)
         chunks, index = attempts_in_postgres(store_url)

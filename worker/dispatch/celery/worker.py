@@ -31,6 +31,14 @@ store connection the first time it runs a task (after the fork); the job modules
 loaded before the fork.  The pool processes run at a lower scheduling priority than
 the API (``DEXLAB_WORKER_NICE``), and the main process runs the sweepers.
 
+**A frozen pool process is killed** (:mod:`worker.liveness`): each pool process beats
+in its slot (its pool index, kept by the process started in its place) of a board the
+main process made before the fork, and the main process's watchdog SIGKILLs one that
+showed no sign of life (no beat, no CPU time) for a lease.  Billiard then starts a new
+process in its slot and returns the message it held to the queue; the job it was
+running has lost its lease by then and is retried as for a process that died.
+Without it a SIGSTOPped process would hold its slot, and its message, for ever.
+
 Logging stays as ``dexlab worker`` configured it (:mod:`worker.logs`): Celery is told
 that logging is set up, so its lines, its task lines (which carry the task ID, the job
 ID) and the prefork children's lines all share the one format.
@@ -58,6 +66,7 @@ from worker.dispatch.celery.dispatch import (
     longest_time_limit,
 )
 from worker.errors import StoreUnavailable
+from worker.liveness import LivenessBoard, Watchdog, frozen_after_s
 from worker.logs import log_context, stdout_as_log_lines
 from worker.pool_process import lower_priority
 from worker.processes import preload_job_modules, worker_registry
@@ -215,6 +224,19 @@ def _settle_at_exit(app: Celery) -> None:
         runtime.loop.settle()
 
 
+def _init_pool_process(settings: WorkerSettings, board: LivenessBoard) -> None:
+    """Celery's ``worker_process_init`` in a new pool process: beat in its slot of the
+    board, and run the jobs at a lower priority (the main process only receives
+    messages and hands them over, and keeps its own priority so that the pool is never
+    kept waiting for its next message)."""
+    slot = current_process_index(base=0)
+    if slot is not None and 0 <= slot < board.slots:
+        board.start_beating(slot)
+    else:  # not expected with a fixed-size pool; it is then not watched
+        log.warning("Celery pool process %d has no slot (index %s)", os.getpid(), slot)
+    lower_priority(settings.worker_nice, f"Celery pool process {os.getpid()}")
+
+
 def _logging_is_set_up(**_: Any) -> None:
     """Celery's ``setup_logging`` signal: with a receiver, Celery leaves logging alone."""
 
@@ -230,13 +252,10 @@ def run_celery_worker(
     signals.setup_logging.connect(_logging_is_set_up, weak=False, dispatch_uid="dexlab")
     if json_lines:
         stdout_as_log_lines("celery.stdout")
-    # The pool processes run the jobs at a lower priority; this main process only
-    # receives messages and hands them over, and keeps its own priority so that the
-    # pool is never kept waiting for its next message.
+    # Made before the pool forks, so every pool process shares it.
+    board = LivenessBoard(settings.workers)
     signals.worker_process_init.connect(
-        lambda **_: lower_priority(settings.worker_nice, f"Celery pool process {os.getpid()}"),
-        weak=False,
-        dispatch_uid="dexlab-nice",
+        lambda **_: _init_pool_process(settings, board), weak=False, dispatch_uid="dexlab-init"
     )
     # Loaded once here, before Celery forks its pool: a pool process (and one started in
     # place of a process that stopped) has them from the start, not on its first job.
@@ -253,6 +272,8 @@ def run_celery_worker(
     store.register_worker(worker_id, socket.gethostname(), os.getpid())
     sweeper = Sweeper(settings, store, dispatcher, worker_id=worker_id)
     sweeper.start()
+    watchdog = Watchdog(board, frozen_after_s(settings))
+    watchdog.start()
     retention = RetentionSweeper(settings, store)
     retention.start()
     argv: list[Any] = [
@@ -272,6 +293,7 @@ def run_celery_worker(
     try:
         app.worker_main(argv=argv)
     finally:
+        watchdog.stop()
         sweeper.stop()
         retention.stop()
         store.unregister_worker(worker_id)
