@@ -25,6 +25,7 @@ from worker.processes import (
     figure_files,
 )
 from worker.studies.evaluation import SilentContext
+from worker.studies.result_paths import STUDY_RESULT_PATHS
 from worker.studies.spec import MAX_CHUNK, StudySpec
 
 __all__ = ["STUDY", "chunk_inputs", "study_cost"]
@@ -286,6 +287,7 @@ _EXAMPLES = (
 
 STUDY = ProcessDefinition(
     id="design-study",
+    result_paths=STUDY_RESULT_PATHS,
     title="Design study: one process over many designs, with the Pareto front",
     description=(
         "Evaluates any single-design process ('process', its other inputs in 'fixed') over "
