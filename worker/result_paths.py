@@ -150,14 +150,15 @@ def display_unit(unit: str, length_unit: str) -> str:
     return base + power.translate(_SUPERSCRIPTS)
 
 
-_GREEK = {
+#: Mathtext commands as text: Greek letters, operators' names, the sum sign, the prime.
+_COMMANDS = {
     "alpha": "α", "beta": "β", "gamma": "γ", "delta": "δ", "epsilon": "ε", "varepsilon": "ε",
     "zeta": "ζ", "eta": "η", "theta": "θ", "kappa": "κ", "lambda": "λ", "mu": "μ", "nu": "ν",
     "xi": "ξ", "pi": "π", "rho": "ρ", "sigma": "σ", "tau": "τ", "phi": "φ", "chi": "χ",
     "psi": "ψ", "omega": "ω", "sum": "∑", "Delta": "Δ", "Sigma": "Σ", "Phi": "Φ", "Psi": "Ψ",
-    "Omega": "Ω", "Lambda": "Λ", "Theta": "Θ", "Gamma": "Γ", "Pi": "Π",
+    "Omega": "Ω", "Lambda": "Λ", "Theta": "Θ", "Gamma": "Γ", "Pi": "Π", "prime": "′",
+    **{name: name for name in ("min", "max", "det", "cos", "sin", "ln", "log")},
 }  # fmt: skip
-_OPERATORS = {"min", "max", "det", "cos", "sin", "ln", "log"}
 _SUBSCRIPT_DIGITS = str.maketrans("0123456789", "₀₁₂₃₄₅₆₇₈₉")
 _COMMAND = re.compile(r"\\([A-Za-z]+)")
 _TEXT = re.compile(r"\\math(?:rm|it|bf|sf)\{([^{}]*)\}")
@@ -166,13 +167,9 @@ _SCRIPT = re.compile(r"([_^])(?:\{([^{}]*)\}|([^\s{}]))")
 
 def _command(match: re.Match[str]) -> str:
     name = match.group(1)
-    if name in _GREEK:
-        return _GREEK[name]
-    if name in _OPERATORS:
-        return name
-    if name == "prime":
-        return "′"
-    raise ValueError(f"plain_symbol does not know the mathtext command \\{name}")
+    if name not in _COMMANDS:
+        raise ValueError(f"plain_symbol does not know the mathtext command \\{name}")
+    return _COMMANDS[name]
 
 
 def _script(match: re.Match[str]) -> str:

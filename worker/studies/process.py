@@ -305,6 +305,9 @@ _EXAMPLES = (
 
 STUDY = ProcessDefinition(
     id="design-study",
+    # 1.1.0: objectives' units in designs.csv and designs.npz (objective_units,
+    # objective_symbols) and on the plots; the first varied input on x.
+    version="1.1.0",
     result_paths=STUDY_RESULT_PATHS,
     title="Design study: one process over many designs, with the Pareto front",
     description=(
