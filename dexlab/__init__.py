@@ -38,6 +38,7 @@ from dexlab.errors import (
     WaitTimeout,
 )
 from dexlab.job import Job
+from dexlab.quantities import ResultPaths, ResultQuantity
 from dexlab.retry import RetryPolicy
 
 __all__ = [
@@ -60,6 +61,8 @@ __all__ = [
     "QuotaExceeded",
     "RequestRefused",
     "ResultNotReady",
+    "ResultPaths",
+    "ResultQuantity",
     "RetryPolicy",
     "ServiceUnavailable",
     "ServiceUnreachable",

@@ -165,6 +165,19 @@ class ProcessLimits(_Document):
     sync_cost_limit: int
 
 
+class ResultPathDocument(_Document):
+    """One number a process reports: where it sits in the result, its unit, its symbol."""
+
+    path: str = Field(description="The result path, in the design studies' syntax: '[]' for "
+                      "every element of a list, '*' for every key of a mapping keyed by the "
+                      "request's own paths (e.g. 'task_points[].d_z').")  # fmt: skip
+    unit: str = Field(description="'-' (a pure number), 'length' (the job's length_unit), "
+                      "'length^2', 'length^4', 'length^n', 'l1', 'l1^2', 'deg', 'deg^2' or "
+                      "'mixed' (docs/data-files.md).")  # fmt: skip
+    symbol: str = Field(description="The symbol as mathtext ('$d_z$'); '' for none.")
+    description: str
+
+
 class ProcessDescription(_Document):
     """``GET /v1/processes/{processID}``: its input schema, worked examples, limits."""
 
@@ -175,6 +188,9 @@ class ProcessDescription(_Document):
     jobControlOptions: list[str]
     inputs: dict[str, Any] = Field(description="The inputs' JSON Schema.")
     outputs: dict[str, str]
+    result_paths: list[ResultPathDocument] = Field(
+        description="Every number the result holds, with its unit and symbol."
+    )
     examples: list[ProcessExampleDocument]
     limits: ProcessLimits
     links: list[Link]

@@ -16,6 +16,7 @@ from typing import Any
 from pydantic import BaseModel
 
 from worker.contract import ChildEnd, JobContext, JobOutcome
+from worker.result_paths import ResultPathInfo
 
 __all__ = [
     "ChildResults",
@@ -25,6 +26,7 @@ __all__ = [
     "ProcessExample",
     "ProcessFile",
     "ProcessRegistry",
+    "ResultPathInfo",
     "data_files",
     "default_registry",
     "figure_files",
@@ -143,6 +145,9 @@ class ProcessDefinition:
     precheck: Callable[[Any], list[dict[str, Any]]] | None = None
     #: Designs the paper reports, which a design study over this process marks.
     paper_points: tuple[PaperPoint, ...] = ()
+    #: Every numeric place of the result, with its unit, symbol and meaning
+    #: (:mod:`worker.result_paths`); checked against the worked examples by the tests.
+    result_paths: tuple[ResultPathInfo, ...] = ()
 
     @cached_property
     def inputs_schema(self) -> dict[str, Any]:
@@ -163,6 +168,7 @@ class ProcessDefinition:
             ),
             "inputs": copy.deepcopy(self.inputs_schema),
             "outputs": dict(self.outputs),
+            "result_paths": [entry.describe() for entry in self.result_paths],
             "examples": [
                 {"title": ex.title, "description": ex.description, "inputs": dict(ex.inputs)}
                 for ex in self.examples

@@ -18,6 +18,7 @@ from dexlab.cli.client_options import client_options, open_client, reported_erro
 from dexlab.cli.render import print_json, print_results, print_status, print_status_table
 from dexlab.client import Client
 from dexlab.documents import example_inputs
+from dexlab.errors import DexlabError
 from dexlab.job import Job
 from dexlab.progress import progress_display
 
@@ -39,7 +40,29 @@ def _read_inputs(source: IO[str]) -> dict[str, Any]:
     return document
 
 
-def _inputs(client: Client, process_id: str, source: IO[str] | None,
+class _Descriptions:
+    """Process descriptions, each asked for once in a command (an example's inputs, then
+    the units of its results)."""
+
+    def __init__(self, client: Client) -> None:
+        self._client = client
+        self._known: dict[str, dict[str, Any]] = {}
+
+    def get(self, process_id: str) -> dict[str, Any]:
+        if process_id not in self._known:
+            self._known[process_id] = self._client.describe(process_id)
+        return self._known[process_id]
+
+    def for_results(self, process_id: str) -> dict[str, Any] | None:
+        """The description for labelling results; None if it cannot be read (the
+        results are then shown without units)."""
+        try:
+            return self.get(process_id)
+        except DexlabError:
+            return None
+
+
+def _inputs(descriptions: _Descriptions, process_id: str, source: IO[str] | None,
             example: int | None) -> dict[str, Any]:  # fmt: skip
     if source is None and example is None:
         raise click.UsageError("Give the inputs: --inputs FILE (or - for stdin) or --example N.")
@@ -49,13 +72,14 @@ def _inputs(client: Client, process_id: str, source: IO[str] | None,
         return _read_inputs(source)
     assert example is not None
     try:
-        return example_inputs(process_id, client.describe(process_id), example)
+        return example_inputs(process_id, descriptions.get(process_id), example)
     except ValueError as exc:
         raise click.BadParameter(str(exc), param_hint="'--example'") from None
 
 
-def _finish(job: Job, directory: Path | None, as_json: bool) -> None:
-    """Print a finished job's results (and download its files)."""
+def _finish(job: Job, directory: Path | None, as_json: bool, descriptions: _Descriptions) -> None:
+    """Print a finished job's results, each number with its symbol and unit (and
+    download its files)."""
     downloaded = job.download(directory) if directory is not None else []
     if as_json:
         document = dict(job.results())
@@ -63,7 +87,8 @@ def _finish(job: Job, directory: Path | None, as_json: bool) -> None:
             document["downloaded"] = [str(p) for p in downloaded]
         print_json(document)
     else:
-        print_results(job.results(), downloaded)
+        description = descriptions.for_results(job.process_id)
+        print_results(job.results(), downloaded, description)
 
 
 def _wait_or_dismiss(job: Job, timeout: float | None) -> None:
@@ -120,7 +145,8 @@ def run(process_id: str, source: IO[str] | None, example: int | None, wait: bool
         as_json: bool) -> None:  # fmt: skip
     """Submit a job; with --wait (or --download), follow it and print its results."""
     with reported_errors(as_json), open_client(url, api_key) as client:
-        job = client.submit(process_id, _inputs(client, process_id, source, example))
+        descriptions = _Descriptions(client)
+        job = client.submit(process_id, _inputs(descriptions, process_id, source, example))
         if not (wait or directory is not None):
             if as_json:
                 print_json(job.last_status.document)
@@ -129,7 +155,7 @@ def run(process_id: str, source: IO[str] | None, example: int | None, wait: bool
                 click.echo(f"Follow it: dexlab status {job.id}   results: dexlab results {job.id}")
             return
         _wait_or_dismiss(job, timeout)
-        _finish(job, directory, as_json)
+        _finish(job, directory, as_json, descriptions)
 
 
 @click.command()
@@ -158,7 +184,7 @@ def results(job_id: str, directory: Path | None, url: str, api_key: str | None,
     with reported_errors(as_json), open_client(url, api_key) as client:
         job = client.job(job_id)
         job.results()  # a job that has not ended: result-not-ready, exit 1
-        _finish(job, directory, as_json)
+        _finish(job, directory, as_json, _Descriptions(client))
 
 
 @click.command(name="jobs")

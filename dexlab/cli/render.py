@@ -16,6 +16,7 @@ from rich.text import Text
 
 from dexlab.documents import Artifact, JobStatus
 from dexlab.errors import DexlabError, InvalidInputs
+from dexlab.quantities import ResultPaths, ResultQuantity
 
 __all__ = [
     "print_description",
@@ -25,6 +26,7 @@ __all__ = [
     "print_results",
     "print_status",
     "print_status_table",
+    "result_rows",
     "summarise",
 ]
 
@@ -141,18 +143,138 @@ def print_status_table(statuses: Iterable[JobStatus], more: bool = False) -> Non
         console.print("More jobs than shown: --limit N shows more, --limit 0 all.")
 
 
-def print_results(document: Mapping[str, Any], downloaded: Sequence[Path] = ()) -> None:
-    """A result document: its members (long ones summarised), notes and files."""
+#: Nesting of records inside records shown as rows of their own (deeper: as JSON).
+_MAX_RECORD_DEPTH = 4
+#: One row of a result: its place, its symbol, its value and its unit.
+ResultRow = tuple[str, str, str, str]
+
+
+def _rounded(value: Any) -> Any:
+    """Numbers to 6 significant digits (whole ones without a decimal point), for text."""
+    if isinstance(value, float) and value == value and abs(value) != float("inf"):
+        short = float(f"{value:.6g}")
+        return int(short) if short.is_integer() and abs(short) < 1e15 else short
+    if isinstance(value, list):
+        return [_rounded(v) for v in value]
+    if isinstance(value, Mapping):
+        return {k: _rounded(v) for k, v in value.items()}
+    return value
+
+
+def _value_text(value: Any) -> str:
+    """A value as shown: numbers to 6 significant digits, text as itself, a list or an
+    object as short JSON (summarised when long)."""
+    if isinstance(value, str):
+        return value if len(value) <= 72 else value[:71] + "…"
+    return summarise(_rounded(value))
+
+
+def _leaf(value: Any, steps: tuple[str | None, ...]) -> tuple[str | None, ...] | None:
+    """The place of the numbers in ``value``: ``[]`` per level of list; None if none."""
+    while isinstance(value, list):
+        steps = (*steps, None)
+        value = next((v for v in value if v is not None), None)
+        if value is None:
+            return steps
+    is_number = isinstance(value, int | float) and not isinstance(value, bool)
+    return steps if is_number else None
+
+
+def _labels(
+    name: str, value: Any, steps: tuple[str | None, ...], paths: ResultPaths
+) -> tuple[str, str]:
+    """(symbol, unit) of the numbers in ``value`` at ``steps``; the symbol is left out
+    where it only repeats the key."""
+    leaf = _leaf(value, steps)
+    found: ResultQuantity | None = None if leaf is None else paths.find(leaf)
+    if found is None:
+        return "", ""
+    key = name.rsplit(".", 1)[-1].removesuffix("[]")
+    return ("" if found.symbol == key else found.symbol), found.unit
+
+
+def _records(
+    records: list[Any], name: str, steps: tuple[str | None, ...], paths: ResultPaths, depth: int
+) -> list[ResultRow]:
+    """A list of records as one row per member: its values across the records."""
+    keys = dict.fromkeys(k for r in records if isinstance(r, Mapping) for k in r)
+    rows: list[ResultRow] = []
+    for key in keys:
+        column = [r.get(key) if isinstance(r, Mapping) else None for r in records]
+        inner, label = (*steps, str(key)), f"{name}.{key}"
+        present = [c for c in column if c is not None]
+        if present and depth < _MAX_RECORD_DEPTH and all(isinstance(c, Mapping) for c in present):
+            rows += _records(column, label, inner, paths, depth + 1)
+        elif present and depth < _MAX_RECORD_DEPTH and all(_is_records(c) for c in present):
+            rows += _records_of_records(column, label, (*inner, None), paths)
+        else:
+            first = present[0] if present else None
+            symbol, unit = _labels(label, first, inner, paths)
+            rows.append((label, symbol, _value_text(column), unit))
+    return rows
+
+
+def _is_records(value: Any) -> bool:
+    return isinstance(value, list) and bool(value) and all(isinstance(v, Mapping) for v in value)
+
+
+def _records_of_records(
+    column: list[Any], name: str, steps: tuple[str | None, ...], paths: ResultPaths
+) -> list[ResultRow]:
+    """Records inside records (each chain's loops): one row per member of the inner
+    records, its values grouped by outer record."""
+    inner = [c if isinstance(c, list) else [] for c in column]
+    keys = dict.fromkeys(k for c in inner for r in c if isinstance(r, Mapping) for k in r)
+    rows: list[ResultRow] = []
+    for key in keys:
+        grouped = [[r.get(key) if isinstance(r, Mapping) else None for r in c] for c in inner]
+        label = f"{name}[].{key}"
+        first = next((v for group in grouped for v in group if v is not None), None)
+        symbol, unit = _labels(label, first, (*steps, str(key)), paths)
+        rows.append((label, symbol, _value_text(grouped), unit))
+    return rows
+
+
+def result_rows(result: Mapping[str, Any], paths: ResultPaths) -> list[ResultRow]:
+    """Every member of a result, nested ones by their dotted place (``criterion.margin``),
+    a list of records one row per member (``links[].length``: every link's), each with
+    its symbol and unit where the process declares them."""
+    rows: list[ResultRow] = []
+
+    def walk(value: Any, name: str, steps: tuple[str | None, ...]) -> None:
+        if isinstance(value, Mapping) and value:
+            for key, item in value.items():
+                walk(item, f"{name}.{key}" if name else str(key), (*steps, str(key)))
+        elif isinstance(value, list) and value and all(isinstance(v, Mapping) for v in value):
+            rows.extend(_records(value, f"{name}[]", (*steps, None), paths, 1))
+        else:
+            symbol, unit = _labels(name, value, steps, paths)
+            rows.append((name, symbol, _value_text(value), unit))
+
+    walk({k: v for k, v in result.items() if k not in _NOTE_MEMBERS}, "", ())
+    return rows
+
+
+def print_results(
+    document: Mapping[str, Any],
+    downloaded: Sequence[Path] = (),
+    description: Mapping[str, Any] | None = None,
+) -> None:
+    """A result document: every number with its symbol and unit (from the process
+    ``description``'s ``result_paths``, if given), the notes and the files."""
     console = _console()
     result = document.get("result") or {}
     console.print(Text(f"Job {document.get('jobID')} ({document.get('processID')}): results",
                        style="bold"))  # fmt: skip
-    table = Table(show_header=False)
-    table.add_column(style="bold", no_wrap=True)
-    table.add_column()
-    for key, value in result.items():
-        if key not in _NOTE_MEMBERS:
-            table.add_row(Text(str(key)), Text(summarise(value)))
+    unit = result.get("length_unit")
+    paths = ResultPaths.from_description(description or {}, unit if isinstance(unit, str) else None)
+    table = Table(box=None, pad_edge=False)
+    for column in ("Result", "Symbol", "Value", "Unit"):
+        table.add_column(
+            column, no_wrap=column == "Result", style="bold" if column == "Result" else None
+        )
+    for name, symbol, value, shown_unit in result_rows(result, paths):
+        table.add_row(Text(name), Text(symbol), Text(value), Text(shown_unit))
     console.print(table)
     for note in result.get("notes") or []:
         console.print(Text(f"• {note}"))

@@ -5,6 +5,8 @@ model: its title and description, ``minOccurs`` (1 when required, else 0),
 ``maxOccurs`` 1 (a list-valued input is one value, an array), and its JSON Schema made
 self-contained (the model's ``$defs`` inlined) with the worked examples' values of
 that input as ``examples``.  ``outputs`` is :func:`service.ogc.outputs.process_outputs`.
+``result_paths``, an extension member, lists every number of the result with its unit
+and symbol, as the process's own description does.
 """
 
 from __future__ import annotations
@@ -112,6 +114,7 @@ def process_description(definition: ProcessDefinition, urls: PublicUrls) -> dict
     document["outputs"] = {
         output_id: spec.describe() for output_id, spec in process_outputs(definition).items()
     }
+    document["result_paths"] = [entry.describe() for entry in definition.result_paths]
     links = document["links"]
     links.append(
         {

@@ -96,11 +96,23 @@ class OgcOutputDescription(_Document):
     schema_: dict[str, Any] = Field(alias="schema")
 
 
+class OgcResultPath(_Document):
+    """An extension member of dexlab's: one number of the result, with its unit and
+    symbol (as ``result_paths`` of ``GET /v1/processes/{processID}``)."""
+
+    path: str
+    unit: str
+    symbol: str
+    description: str
+
+
 class OgcProcess(OgcProcessSummary):
-    """process.yaml: the summary with the inputs and outputs maps."""
+    """process.yaml: the summary with the inputs and outputs maps (and, an extension,
+    ``result_paths``: every number of the result with its unit)."""
 
     inputs: dict[str, OgcInputDescription]
     outputs: dict[str, OgcOutputDescription]
+    result_paths: list[OgcResultPath]
 
 
 class OgcStatusInfo(_Document):

@@ -16,11 +16,13 @@ from fastapi.responses import HTMLResponse
 
 from service.documents import results_document, status_document
 from service.pages.input_table import input_rows
+from service.pages.quantities import job_quantities
 from service.pages.renderer import Pages
 from service.pages.result_view import result_view
 from service.problems import PROBLEM_TYPES, problem_type_uri
 from worker.contract import ArtifactInfo, JobRecord, JobStatus
 from worker.processes import ProcessDefinition, ProcessRegistry
+from worker.result_paths import plain_symbol
 from worker.store.base import JobPage
 
 __all__ = [
@@ -121,6 +123,10 @@ def process_page(
         "method": method,
         "examples": examples if examples is not None else example_forms(definition),
         "inputs": input_rows(definition.inputs_schema),
+        "result_paths": [
+            {**entry.describe(), "symbol": plain_symbol(entry.symbol) if entry.symbol else ""}
+            for entry in definition.result_paths
+        ],
         **(extra or {}),
     }
     return pages.render(request, template, context, status_code=status_code)
@@ -250,7 +256,11 @@ def job_page(
             plots=_plots(job.artifacts, f"/v1/jobs/{job.job_id}"),
             notes=notes,
             errata_count=sum(1 for n in notes if n["erratum"]),
-            result=result_view(result, leave_out=("notes", "paper_errata")),
+            result=result_view(
+                result,
+                leave_out=("notes", "paper_errata"),
+                quantities=job_quantities(definition, result, job.inputs),
+            ),
             downloads=[
                 {**a, "download": a["media_type"] in _DOWNLOADS} for a in results["artifacts"]
             ],

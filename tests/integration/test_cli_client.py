@@ -52,6 +52,9 @@ def test_run_an_example_waits_and_downloads_every_file(server: Deployment, tmp_p
                   "--download", str(tmp_path / "files"))  # fmt: skip
     assert done.returncode == 0, done.stderr
     assert "triple-rocker" in done.stdout and "Wrote 2 files" in done.stdout
+    # every nested value, with its symbol and unit (Fig 3 is in cm)
+    margin = next(line for line in done.stdout.splitlines() if "criterion.margin" in line)
+    assert margin.split() == ["criterion.margin", "p", "+", "q", "-", "(s", "+", "l)", "-4", "cm"]
     listed = server.client.get(f"/v1/jobs/{job_id_of(done.stderr)}/results").json()["artifacts"]
     for artifact in listed:
         path = tmp_path / "files" / artifact["name"]

@@ -186,6 +186,9 @@ async def test_landing_conformance_and_processes(pool: httpx.AsyncClient) -> Non
     description = (await pool.get("/ogc/processes/chain-parallelism")).json()
     OgcProcess.model_validate(description)
     assert description["inputs"]["chains"]["minOccurs"] == 1
+    assert {"path": "chains[].Q", "unit": "length^4", "symbol": "$Q$"}.items() <= next(
+        entry for entry in description["result_paths"] if entry["path"] == "chains[].Q"
+    ).items()
     assert description["outputs"]["chain_graphs.svg"]["schema"]["contentMediaType"] == (
         "image/svg+xml"
     )

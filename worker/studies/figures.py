@@ -3,8 +3,13 @@ multiples over three, and the objective space with the non-dominated designs
 highlighted.
 
 Input and result paths are shown as code (mathtext ``\\mathtt``), with their units
-(:mod:`.files`); infeasible designs are grey (maps) or left out (scatter).  The paper's
-designs the study contains (:mod:`.paper_points`) are marked on each.
+(:mod:`.files`) and, for an objective, the symbol its process declares; infeasible
+designs are grey (maps) or left out (scatter).  The paper's designs the study contains
+(:mod:`.paper_points`) are marked on each, under the non-dominated designs.
+
+Axes follow the order of the varied inputs: the first on x, the second on y (as the
+papers' figures put alpha1 on x and alpha2 on y); with three, the one with the fewest
+values makes the panels and the other two keep that order.
 """
 
 from __future__ import annotations
@@ -28,6 +33,7 @@ if TYPE_CHECKING:
 __all__ = [
     "Marker",
     "code",
+    "objective_label",
     "objective_maps_figure",
     "objective_slices_figure",
     "pareto_figure",
@@ -36,6 +42,9 @@ __all__ = [
 
 _FRONT = "#e8373f"
 _CLOUD = "#8c8c8c"
+_PAPER = "#1f1f1f"
+#: Drawing order in the objective space: the cloud, the paper's designs, the front on top.
+_CLOUD_Z, _PAPER_Z, _FRONT_Z = 2.0, 3.0, 4.0
 _INFEASIBLE = "#d9d9d9"
 _MARKER_SHAPES = ("*", "D", "P", "X", "s", "^")
 #: Most slices of the third varied input shown (evenly spread, both ends kept).
@@ -84,6 +93,18 @@ def code(path: str) -> str:
     return r"$\mathtt{" + escaped + "}$"
 
 
+def objective_label(path: str, symbol: str, unit: str) -> str:
+    """An objective's axis label: its path as code, then its symbol (with the reduction
+    the path asks for, ``min $d_z$``) and unit: ``[cm$^2$]``, ``[-]``."""
+    shown = unit.replace("$", r"\$")
+    for power in ("2", "3", "4", "n"):
+        shown = shown.replace(f"^{power}", f"$^{power}$")
+    reduction = path.partition("|")[2]
+    if not symbol:
+        return f"{code(path)} [{shown}]"
+    return f"{code(path)}\n{reduction} {symbol} [{shown}]".replace("\n ", "\n")
+
+
 def objective_maps_figure(
     axes_values: Sequence[NDArray[np.float64]],
     axes_labels: Sequence[str],
@@ -92,8 +113,9 @@ def objective_maps_figure(
     title: str,
     markers: Sequence[Marker] = (),
 ) -> Figure:
-    """Heat maps (two varied inputs: ``maps`` (n0, n1) each) or curves (one: (n0,)) of
-    each objective; NaN (infeasible) drawn grey; ``markers`` on each panel."""
+    """Heat maps (two varied inputs: ``maps`` (n0, n1) each, the first input on x) or
+    curves (one: (n0,)) of each objective; NaN (infeasible) drawn grey; ``markers`` on
+    each panel."""
     count = len(maps)
     fig = Figure(figsize=(4.9 * count + 0.6, 4.6 + 0.35 * bool(markers)), layout="constrained")
     for k, (values, label) in enumerate(zip(maps, map_labels, strict=True)):
@@ -105,10 +127,10 @@ def objective_maps_figure(
             ax.set_ylabel(label, fontsize=10)
             ax.grid(alpha=0.3)
             continue
-        mesh = _heat_map(ax, axes_values[1], axes_values[0], values)
-        _mark(ax, markers, 1, 0)
-        ax.set_xlabel(axes_labels[1], fontsize=10)
-        ax.set_ylabel(axes_labels[0], fontsize=10)
+        mesh = _heat_map(ax, axes_values[0], axes_values[1], values.T)
+        _mark(ax, markers, 0, 1)
+        ax.set_xlabel(axes_labels[0], fontsize=10)
+        ax.set_ylabel(axes_labels[1], fontsize=10)
         bar = fig.colorbar(mesh, ax=ax, shrink=0.9)
         bar.set_label(label, fontsize=10)
     _legend(fig, markers)
@@ -164,7 +186,7 @@ def objective_slices_figure(
     n2) each), one heat map per value of the input with the fewest values (at most
     :data:`MAX_SLICES`), one colour scale per row; a marker on the panel of its value."""
     sliced = min(range(3), key=lambda axis: (len(axes_values[axis]), -axis))
-    y_axis, x_axis = (axis for axis in range(3) if axis != sliced)
+    x_axis, y_axis = (axis for axis in range(3) if axis != sliced)
     picks = slice_indices(len(axes_values[sliced]))
     rows, cols = len(maps), len(picks)
     fig = Figure(figsize=(3.3 * cols + 1.4, 3.1 * rows + 0.9 + 0.35 * bool(markers)),
@@ -212,22 +234,29 @@ def pareto_figure(
     ax = fig.add_subplot()
     finite = np.isfinite(objectives[:, :2]).all(axis=1)
     ax.plot(objectives[finite, 0], objectives[finite, 1], ls="none", marker=".", ms=4,
-            color=_CLOUD, alpha=0.6, label=f"feasible designs ({int(finite.sum()):,})")  # fmt: skip
+            color=_CLOUD, alpha=0.6, label=f"feasible designs ({int(finite.sum()):,})",
+            zorder=_CLOUD_Z)  # fmt: skip
+    for k, marker in enumerate(markers):
+        if marker.objectives is not None and all(map(math.isfinite, marker.objectives[:2])):
+            # Hollow and under the front, each smaller than the last: twins share their
+            # objectives, and a paper design on the front leaves its red dot in sight.
+            ax.plot(*marker.objectives[:2], ls="none", marker=_MARKER_SHAPES[k % 6],
+                    ms=max(15 - 4 * k, 6), mfc="none", mec=_PAPER, mew=1.3, zorder=_PAPER_Z,
+                    label=f"the paper's design: {symbols(marker.label)}")  # fmt: skip
     points = objectives[front][:, :2]
     order = np.argsort(points[:, 0], kind="stable")
     ax.plot(points[order, 0], points[order, 1], marker="o", ms=5, color=_FRONT, lw=1.2,
-            label=f"non-dominated ({len(front):,})")  # fmt: skip
-    for k, marker in enumerate(markers):
-        if marker.objectives is not None and all(map(math.isfinite, marker.objectives[:2])):
-            # Hollow, each smaller than the last: twins share their objectives.
-            ax.plot(*marker.objectives[:2], ls="none", marker=_MARKER_SHAPES[k % 6],
-                    ms=max(15 - 4 * k, 6), mfc="none", mec="black", mew=1.3, zorder=5,
-                    label=f"the paper's design: {symbols(marker.label)}")  # fmt: skip
+            mec="white", mew=0.6, label=f"non-dominated ({len(front):,})",
+            zorder=_FRONT_Z)  # fmt: skip
     words = {"max": "larger is better", "min": "smaller is better"}
     ax.set_title(f"x: {words[goals[0]]}; y: {words[goals[1]]}", fontsize=9.5, color="0.3")
     ax.set_xlabel(labels[0], fontsize=10)
     ax.set_ylabel(labels[1], fontsize=10)
     ax.grid(alpha=0.3)
-    fig.legend(loc="outside lower center", ncols=2, fontsize=9, frameon=False)
+    # The legend keeps the study's designs together (cloud, front), the paper's after them.
+    handles, names = ax.get_legend_handles_labels()
+    listed = [0, len(names) - 1, *range(1, len(names) - 1)]
+    fig.legend([handles[i] for i in listed], [names[i] for i in listed],
+               loc="outside lower center", ncols=2, fontsize=9, frameon=False)  # fmt: skip
     fig.suptitle(title, fontsize=12, fontweight="bold")
     return fig

@@ -2,8 +2,9 @@
 
 Column and array names carry units (:mod:`worker.common.data_export`): a varied input
 takes its unit from the process's input schema (a length in the fixed ``length_unit``,
-``*_deg`` in degrees, otherwise a pure number); an objective is in whatever unit the
-process reports it, written ``[as reported]``.
+``*_deg`` in degrees, otherwise a pure number); an objective takes the unit the process
+declares for its result path (:attr:`ProcessDefinition.result_paths`; a reduction keeps
+the unit: the sum of lengths is a length), ``length`` in the fixed ``length_unit``.
 """
 
 from __future__ import annotations
@@ -16,14 +17,24 @@ import numpy as np
 
 from worker.common.data_export import DIMENSIONLESS, column, columns_csv, job_metadata, npz_artifact
 from worker.contract import Artifact
-from worker.processes import ProcessDefinition
+from worker.processes import ProcessDefinition, ResultPathInfo
+from worker.result_paths import ResultPathTable, unit_text
 from worker.studies.assembly import StudyTable, pareto_rows
-from worker.studies.paths import parse_input_path
+from worker.studies.paths import parse_input_path, parse_result_path
 from worker.studies.spec import StudySpec
 
-__all__ = ["AS_REPORTED", "column_names", "designs_csv", "designs_npz", "parameter_unit"]
+__all__ = [
+    "AS_REPORTED",
+    "column_names",
+    "designs_csv",
+    "designs_npz",
+    "objective_entry",
+    "objective_unit",
+    "parameter_unit",
+]
 
-#: The unit written for an objective: the process's own, as its result reports it.
+#: The unit written for an objective the process does not declare (only a study
+#: accepted before its path was declared: submission refuses such objectives).
 AS_REPORTED = "as reported"
 
 
@@ -64,6 +75,26 @@ def parameter_unit(process: ProcessDefinition, name: str, fixed: Mapping[str, An
     return DIMENSIONLESS
 
 
+def objective_entry(process: ProcessDefinition, name: str) -> ResultPathInfo | None:
+    """The process's declaration of the numbers an objective reads: ``chains[3].Q`` is
+    ``chains[].Q``; ``links|sum`` reduces ``links[]``."""
+    path = parse_result_path(name)
+    table = ResultPathTable(process.result_paths)
+    found = table.find(path.steps)
+    if found is None and path.reduction is not None:  # a reduction flattens a last list
+        found = table.find((*path.steps, None))
+    return found
+
+
+def objective_unit(process: ProcessDefinition, name: str, fixed: Mapping[str, Any]) -> str:
+    """The unit of an objective: its declaration's, a length in the fixed ``length_unit``
+    (min, max, mean and sum of values keep their unit)."""
+    entry = objective_entry(process, name)
+    if entry is None:
+        return AS_REPORTED
+    return unit_text(entry.unit, str(fixed.get("length_unit", "units")))
+
+
 def _quantity(name: str) -> str:
     text = re.sub(r"[^A-Za-z0-9]+", "_", name).strip("_")
     return text if text[:1].isalpha() else f"v_{text}"
@@ -75,7 +106,7 @@ def column_names(spec: StudySpec, process: ProcessDefinition) -> tuple[list[str]
     names: list[list[str]] = [[], []]
     pairs = [
         (0, name, parameter_unit(process, name, spec.fixed)) for name in spec.designs.names
-    ] + [(1, name, AS_REPORTED) for name in spec.objectives]
+    ] + [(1, name, objective_unit(process, name, spec.fixed)) for name in spec.objectives]
     for group, name, unit in pairs:
         quantity = base = _quantity(name)
         n = 2
@@ -99,6 +130,7 @@ def designs_csv(spec: StudySpec, process: ProcessDefinition, table: StudyTable) 
 
 def designs_npz(spec: StudySpec, process: ProcessDefinition, table: StudyTable) -> Artifact:
     units = [parameter_unit(process, name, spec.fixed) for name in spec.designs.names]
+    entries = [objective_entry(process, name) for name in spec.objectives]
     reasons = np.array([r or "" for r in table.reasons], dtype=str)
     arrays = {
         "index": table.index,
@@ -111,10 +143,16 @@ def designs_npz(spec: StudySpec, process: ProcessDefinition, table: StudyTable) 
         "parameter_units": np.array(units, dtype=str),
         "objective_names": np.array(list(spec.objectives), dtype=str),
         "objective_goals": np.array(list(spec.objectives.values()), dtype=str),
+        "objective_units": np.array(
+            [objective_unit(process, name, spec.fixed) for name in spec.objectives], dtype=str
+        ),
+        "objective_symbols": np.array([e.symbol if e else "" for e in entries], dtype=str),
     }
     return npz_artifact(
         "designs.npz", arrays, "Every design (NumPy arrays)",
-        units={"index": DIMENSIONLESS, "parameters": "parameter_units", "objectives": AS_REPORTED,
+        units={"index": DIMENSIONLESS, "parameters": "parameter_units",
+               "objectives": "objective_units", "objective_units": DIMENSIONLESS,
+               "objective_symbols": DIMENSIONLESS,
                "feasible": DIMENSIONLESS, "reason": DIMENSIONLESS, "pareto": DIMENSIONLESS,
                "parameter_names": DIMENSIONLESS, "parameter_units": DIMENSIONLESS,
                "objective_names": DIMENSIONLESS, "objective_goals": DIMENSIONLESS},

@@ -14,11 +14,18 @@ from worker.studies.designs import GridSpace
 from worker.studies.figures import (
     Marker,
     code,
+    objective_label,
     objective_maps_figure,
     objective_slices_figure,
     pareto_figure,
 )
-from worker.studies.files import AS_REPORTED, designs_csv, designs_npz, parameter_unit
+from worker.studies.files import (
+    designs_csv,
+    designs_npz,
+    objective_entry,
+    objective_unit,
+    parameter_unit,
+)
 from worker.studies.paper_points import PaperMark, paper_marks
 from worker.studies.spec import StudySpec
 
@@ -90,7 +97,11 @@ def _markers(table: StudyTable, marks: list[PaperMark], axes: list[int]) -> list
 def _figures(
     spec: StudySpec, process: ProcessDefinition, table: StudyTable, marks: list[PaperMark]
 ) -> tuple[Artifact, ...]:
-    labels = [f"{code(name)} [{AS_REPORTED}]" for name in spec.objectives]
+    labels = []
+    for name in spec.objectives:
+        entry = objective_entry(process, name)
+        unit = objective_unit(process, name, spec.fixed)
+        labels.append(objective_label(name, entry.symbol if entry else "", unit))
     out: tuple[Artifact, ...] = ()
     space = spec.designs
     axes = [a for a in space.axes if a[3] > 1] if isinstance(space, GridSpace) else []

@@ -25,6 +25,7 @@ from worker.processes import (
     figure_files,
 )
 from worker.studies.evaluation import SilentContext
+from worker.studies.result_paths import STUDY_RESULT_PATHS
 from worker.studies.spec import MAX_CHUNK, StudySpec
 
 __all__ = ["STUDY", "chunk_inputs", "study_cost"]
@@ -71,19 +72,23 @@ def _probe_indices(count: int, most: int = 9) -> list[int]:
 
 
 def dry_check(spec: StudySpec) -> list[dict[str, Any]]:
-    """At submission: a design run once, so that fixed inputs the process refuses
-    whatever the varied values, and objective paths it does not report, are a 422
-    before anything is queued.  The first design is tried, then others spread over the
-    space until one validates: a design refused for its varied values is no error
-    (other designs may be fine), but fixed inputs every tried design is refused for
-    are.  A design too costly to run during a request (above the process's sync limit
-    and a thousandth of its cost limit) is not run."""
+    """At submission: objectives that are no number the process declares
+    (:attr:`ProcessDefinition.result_paths`), then a design run once, so that fixed
+    inputs the process refuses whatever the varied values, and objective paths it does
+    not report, are a 422 before anything is queued.  The first design is tried, then
+    others spread over the space until one validates: a design refused for its varied
+    values is no error (other designs may be fine), but fixed inputs every tried design
+    is refused for are.  A design too costly to run during a request (above the
+    process's sync limit and a thousandth of its cost limit) is not run."""
     from worker.errors import InvalidInputs
     from worker.studies.evaluation import design_inputs
     from worker.studies.paths import parse_result_path, reported
     from worker.submission import validate_inputs
 
     process = _target(spec)
+    undeclared = _undeclared_objectives(spec, process)
+    if undeclared:
+        return undeclared
     varied = {_field_of(name) for name in spec.designs.names}
     inputs = None
     refusals: list[InvalidInputs] = []
@@ -116,6 +121,20 @@ def dry_check(spec: StudySpec) -> list[dict[str, Any]]:
          "message": f"{spec.process} reports nothing at this path (checked on a design)"}
         for name in spec.objectives
         if not reported(result, parse_result_path(name))
+    ]  # fmt: skip
+
+
+def _undeclared_objectives(spec: StudySpec, process: ProcessDefinition) -> list[dict[str, Any]]:
+    """An objective must read numbers the process declares (so that every study knows
+    their unit): one field error per objective that does not."""
+    from worker.studies.files import objective_entry
+
+    return [
+        {"field": f"inputs.objectives.{name}", "type": "value_error",
+         "message": f"{spec.process} reports no number at this path (its result_paths, in "
+         f"GET /v1/processes/{spec.process}, list every number it reports)"}
+        for name in spec.objectives
+        if objective_entry(process, name) is None
     ]  # fmt: skip
 
 
@@ -286,6 +305,10 @@ _EXAMPLES = (
 
 STUDY = ProcessDefinition(
     id="design-study",
+    # 1.1.0: objectives' units in designs.csv and designs.npz (objective_units,
+    # objective_symbols) and on the plots; the first varied input on x.
+    version="1.1.0",
+    result_paths=STUDY_RESULT_PATHS,
     title="Design study: one process over many designs, with the Pareto front",
     description=(
         "Evaluates any single-design process ('process', its other inputs in 'fixed') over "

@@ -48,6 +48,12 @@ def test_descriptions_map_every_input_with_a_self_contained_schema(
     }
     assert rels[REL_PROCESSES]["href"] == "https://dexlab.example.org/kin/ogc/processes"
     assert {"notes", "paper_errata", *definition.outputs} <= set(document["outputs"])
+    # dexlab's extension: every number of the result with its unit, as /v1 describes it
+    assert document["result_paths"] == definition.describe()["result_paths"]
+    assert document["result_paths"] and all(
+        set(entry) == {"path", "unit", "symbol", "description"}
+        for entry in document["result_paths"]
+    )
 
 
 def test_summaries_say_how_each_process_runs() -> None:

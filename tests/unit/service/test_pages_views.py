@@ -39,11 +39,11 @@ def page_of(pages: Pages, job: JobRecord, result: dict[str, Any] | None = None) 
 
 
 def job(status: JobStatus, **fields: Any) -> JobRecord:
+    fields.setdefault("inputs", {"lengths": [30, 17, 18, 25], "ground": 0})
     return JobRecord(
         job_id="j-1",
         process_id="fourbar-grashof",
         status=status,
-        inputs={"lengths": [30, 17, 18, 25], "ground": 0},
         created=NOW,
         updated=NOW,
         **fields,
@@ -93,3 +93,22 @@ def test_the_paper_errata_stand_out(pages: Pages) -> None:
     without = page_of(pages, job(JobStatus.SUCCESSFUL), {"notes": notes})  # no paper_errata
     assert "The paper prints 126" in without
     assert 'class="erratum"' not in without and "Paper erratum" not in without
+
+
+def test_results_show_each_number_with_its_symbol_and_unit(pages: Pages) -> None:
+    """Fig 3 in cm: lengths in cm (a nested object's, a list's, a table column's), its
+    Grashof margin with its symbol, pure numbers without a unit, meanings on hover."""
+    from tests.unit.families.conftest import RecordingContext
+    from worker.families.chains import FOURBAR_GRASHOF
+
+    inputs = {"lengths": [30, 17, 18, 25], "ground": 0, "length_unit": "cm"}
+    spec = FOURBAR_GRASHOF.inputs_model.model_validate({**inputs, "plots": False})
+    result = dict(FOURBAR_GRASHOF.run(spec, RecordingContext()).result)
+    html = " ".join(page_of(pages, job(JobStatus.SUCCESSFUL, inputs=inputs), result).split())
+    margin = html.split('<th scope="row" title="Grashof&#39;s margin', 1)[1].split("</tr>", 1)[0]
+    assert '>margin <span class="symbol">p + q - (s + l)</span></th>' in margin
+    assert 'class="num">-4</span> <span class="unit">cm</span></td>' in margin
+    assert '<span class="inline">[30, 17, 18, 25]</span> <span class="unit">cm</span>' in html
+    assert 'length <span class="symbol">L_i</span> <span class="unit">[cm]</span></th>' in html
+    shortest = html.split(">shortest</th>", 1)[1].split("</tr>", 1)[0]
+    assert "unit" not in shortest  # an index: a pure number

@@ -23,6 +23,10 @@ from worker.families.chains.costs import (
 )
 from worker.families.chains.examples import CHAIN_PARALLELISM_EXAMPLES, FOURBAR_GRASHOF_EXAMPLES
 from worker.families.chains.fourbar_spec import FourBarGrashofSpec
+from worker.families.chains.result_paths import (
+    CHAIN_PARALLELISM_RESULT_PATHS,
+    FOURBAR_GRASHOF_RESULT_PATHS,
+)
 from worker.families.chains.specs import (
     MAX_CHAINS,
     MAX_SINGLE_LOOP_LINKS,
@@ -47,6 +51,7 @@ def _run_fourbar_grashof(spec: FourBarGrashofSpec, ctx: JobContext) -> JobOutcom
 
 CHAIN_PARALLELISM = ProcessDefinition(
     id="chain-parallelism",
+    result_paths=CHAIN_PARALLELISM_RESULT_PATHS,
     title="Kinematic chains: uniform rigidity (P) and parallelism (Q)",
     method_doc="chains",
     files=(
@@ -96,6 +101,7 @@ CHAIN_PARALLELISM = ProcessDefinition(
 
 FOURBAR_GRASHOF = ProcessDefinition(
     id="fourbar-grashof",
+    result_paths=FOURBAR_GRASHOF_RESULT_PATHS,
     title="Four-bar chain: Grashof type, Barker's class and fully turning links",
     method_doc="chains",
     files=figure_files("fourbar_motion", "Range of motion and fully turning links"),

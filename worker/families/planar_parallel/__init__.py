@@ -29,6 +29,10 @@ from worker.families.planar_parallel.examples import (
     OPTIMISATION_EXAMPLES,
     OPTIMISATION_PAPER_POINTS,
 )
+from worker.families.planar_parallel.result_paths import (
+    CONDITIONING_MAP_RESULT_PATHS,
+    OPTIMISATION_RESULT_PATHS,
+)
 from worker.families.planar_parallel.specs import ConditioningMapSpec, OptimisationSpec
 from worker.processes import ProcessDefinition, ProcessFile, data_files, figure_files
 
@@ -49,6 +53,7 @@ def _run_optimisation(spec: OptimisationSpec, ctx: JobContext) -> JobOutcome:
 
 CONDITIONING_MAP = ProcessDefinition(
     id="planar2dof-conditioning-map",
+    result_paths=CONDITIONING_MAP_RESULT_PATHS,
     title="2-DOF planar parallel robot: conditioning map",
     method_doc="planar-parallel",
     files=(
@@ -104,6 +109,7 @@ CONDITIONING_MAP = ProcessDefinition(
 
 OPTIMISATION = ProcessDefinition(
     id="planar2dof-optimisation",
+    result_paths=OPTIMISATION_RESULT_PATHS,
     paper_points=OPTIMISATION_PAPER_POINTS,
     title="2-DOF planar parallel robot: optimum design (proximal arms)",
     method_doc="planar-parallel",

@@ -30,6 +30,11 @@ from worker.families.planar_serial.examples import (
     DEXTERITY_MAP_EXAMPLES,
     SYNTHESIS_EXAMPLES,
 )
+from worker.families.planar_serial.result_paths import (
+    DESIGN_RESULT_PATHS,
+    DEXTERITY_MAP_RESULT_PATHS,
+    SYNTHESIS_RESULT_PATHS,
+)
 from worker.families.planar_serial.specs import DexterityMapSpec, SynthesisSpec
 from worker.processes import ProcessDefinition, ProcessFile, data_files, figure_files
 
@@ -61,6 +66,7 @@ _LIMITS_TEXT = (
 
 DEXTERITY_MAP = ProcessDefinition(
     id="planar3r-dexterity-map",
+    result_paths=DEXTERITY_MAP_RESULT_PATHS,
     title="Three-link planar arm: dexterity map",
     method_doc="planar-serial",
     files=(
@@ -119,6 +125,7 @@ DEXTERITY_MAP = ProcessDefinition(
 
 SYNTHESIS = ProcessDefinition(
     id="planar3r-synthesis",
+    result_paths=SYNTHESIS_RESULT_PATHS,
     title="Three-link planar arm: link lengths from task points or a trajectory",
     method_doc="planar-serial",
     files=(
@@ -174,6 +181,7 @@ SYNTHESIS = ProcessDefinition(
 
 DESIGN = ProcessDefinition(
     id="planar3r-design",
+    result_paths=DESIGN_RESULT_PATHS,
     title="Three-link planar arm: link lengths designed for the task under joint limits",
     method_doc="planar-serial",
     files=(

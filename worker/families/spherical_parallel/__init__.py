@@ -40,6 +40,11 @@ from worker.families.spherical_parallel.examples import (
     OPTIMISATION_EXAMPLES,
 )
 from worker.families.spherical_parallel.optimisation_spec import SCREEN_PER_START, OptimisationSpec
+from worker.families.spherical_parallel.result_paths import (
+    CONDITIONING_MAP_RESULT_PATHS,
+    DESIGN_SPACE_RESULT_PATHS,
+    OPTIMISATION_RESULT_PATHS,
+)
 from worker.families.spherical_parallel.specs import ConditioningMapSpec, DesignSpaceSpec
 from worker.processes import ProcessDefinition, ProcessFile, data_files, figure_files
 
@@ -83,6 +88,7 @@ _INDICES = (
 
 CONDITIONING_MAP = ProcessDefinition(
     id="spm-conditioning-map",
+    result_paths=CONDITIONING_MAP_RESULT_PATHS,
     paper_points=CONDITIONING_MAP_PAPER_POINTS,
     title="Spherical parallel manipulator: conditioning over a workspace",
     method_doc="spherical-parallel",
@@ -146,6 +152,7 @@ CONDITIONING_MAP = ProcessDefinition(
 
 DESIGN_SPACE = ProcessDefinition(
     id="spm-design-space",
+    result_paths=DESIGN_SPACE_RESULT_PATHS,
     title="Spherical parallel manipulator: design space for a prescribed workspace",
     method_doc="spherical-parallel",
     files=(
@@ -195,6 +202,7 @@ DESIGN_SPACE = ProcessDefinition(
 
 OPTIMISATION = ProcessDefinition(
     id="spm-optimisation",
+    result_paths=OPTIMISATION_RESULT_PATHS,
     title="Spherical parallel manipulator: optimum design for a prescribed workspace",
     method_doc="spherical-parallel",
     files=(

@@ -32,7 +32,22 @@ def test_the_dry_check_passes_a_sound_study() -> None:
 def test_an_objective_the_process_never_reports_is_refused() -> None:
     problems = dry_check(spec(objectives={"task_point[].d_z|min": "max", "links|sum": "min"}))
     assert [p["field"] for p in problems] == ["inputs.objectives.task_point[].d_z|min"]
-    assert "reports nothing at this path" in problems[0]["message"]
+    assert "reports no number at this path" in problems[0]["message"]
+    assert "result_paths" in problems[0]["message"]
+
+
+def test_an_objective_must_be_a_declared_number() -> None:
+    """``method`` is reported (a text): no number, so no objective, and no unit to give
+    it; ``chains[3].rank.by_Q`` and ``links|sum`` read declared numbers."""
+    problems = dry_check(spec(objectives={"method": "max", "discretisation.grid": "min"}))
+    assert [p["field"] for p in problems] == [
+        "inputs.objectives.method",
+        "inputs.objectives.discretisation.grid",
+    ]
+    assert dry_check(spec(objectives={"links|sum": "min", "links[0]": "max",
+                                      "full_dexterity_bands[]|max": "max"})) == []  # fmt: skip
+    chains = StudySpec.model_validate(STUDY.examples[2].inputs)
+    assert dry_check(chains) == []
 
 
 def test_fixed_inputs_refused_whatever_is_varied_are_refused() -> None:
@@ -88,9 +103,11 @@ def test_a_first_design_refused_for_its_varied_values_is_no_error() -> None:
     study = StudySpec.model_validate(STUDY.examples[0].inputs)
     assert study.designs.block(0, 1)[0].tolist() == [30.0, 30.0]
     assert dry_check(study) == []
-    wrong = study.model_copy(update={"objectives": {"indices.no_such_index": "max"}})
+    # declared (given orientations have it), but this study gives none
+    wrong = study.model_copy(update={"objectives": {"orientations[0].inverse_condition": "max"}})
     (problem,) = dry_check(wrong)
-    assert problem["field"] == "inputs.objectives.indices.no_such_index"
+    assert problem["field"] == "inputs.objectives.orientations[0].inverse_condition"
+    assert "reports nothing at this path" in problem["message"]
 
 
 def test_fixed_inputs_refused_at_every_tried_design_are_refused() -> None:
