@@ -17,14 +17,19 @@ __all__ = ["field_error"]
 
 
 def field_error(
-    model: BaseModel, field: str | tuple[str | int, ...], message: str, value: Any
+    model: BaseModel | type[BaseModel],
+    field: str | tuple[str | int, ...],
+    message: str,
+    value: Any,
 ) -> ValidationError:
     """A ValidationError at ``field`` (a name or a path inside ``model``) saying
-    ``message`` about ``value``; raise it from a validator of ``model``."""
+    ``message`` about ``value``; raise it from a validator of ``model`` (the model
+    itself, or its class in a field validator, where ``field`` is inside that field)."""
     loc = (field,) if isinstance(field, str) else field
     detail = InitErrorDetails(
         type=PydanticCustomError("value_error", "Value error, {reason}", {"reason": message}),
         loc=loc,
         input=value,
     )
-    return ValidationError.from_exception_data(type(model).__name__, [detail])
+    title = model.__name__ if isinstance(model, type) else type(model).__name__
+    return ValidationError.from_exception_data(title, [detail])

@@ -21,10 +21,13 @@ __all__ = [
     "REDUCTIONS",
     "InputPath",
     "ResultPath",
+    "nearest_place",
     "parse_input_path",
     "parse_result_path",
     "read_result",
     "reported",
+    "show_input_path",
+    "varied_input_problem",
     "with_input",
 ]
 
@@ -66,29 +69,118 @@ def with_input(document: Mapping[str, Any], path: InputPath, value: Any) -> dict
 
     A missing key is created (with a mapping on the way if needed); a list index must
     exist already, since the length of a list is part of the input (ValueError
-    otherwise, naming the path).
+    otherwise, saying what the fixed inputs lack).
     """
     root: dict[str, Any] = copy.deepcopy(dict(document))
     node: Any = root
-    shown = ""
+    shown = ""  # the path so far, as the fixed inputs hold it
+    created = False  # whether ``node`` was made here, on the way to a varied key
     for position, step in enumerate(path):
-        last = position == len(path) - 1
-        if isinstance(step, int):
-            shown += f"[{step}]"
-            if not isinstance(node, list) or step >= len(node):
-                raise ValueError(f"'{shown}' does not exist in the fixed inputs (a list index "
-                                 "must name an element that is there)")  # fmt: skip
-        else:
-            shown += f".{step}" if shown else step
-            if not isinstance(node, dict):
-                raise ValueError(f"'{shown}': its parent is not a mapping in the fixed inputs")
-            if not last and step not in node:
-                node[step] = {}
-        if last:
+        problem = _missing_step(node, step, shown, created)
+        if problem is not None:
+            raise ValueError(problem)
+        shown += f"[{step}]" if isinstance(step, int) else (f".{step}" if shown else step)
+        if position == len(path) - 1:
             node[step] = value
         else:
+            created = isinstance(step, str) and step not in node
+            if created:
+                node[step] = {}
             node = node[step]
     return root
+
+
+def _kind(value: Any) -> str:
+    if isinstance(value, Mapping):
+        return "a mapping"
+    if isinstance(value, list):
+        return f"a list of {len(value)}"
+    if isinstance(value, str):
+        return "a text"
+    if value is None or isinstance(value, bool):
+        return "null" if value is None else "a flag"
+    return f"the number {value!r}"
+
+
+def _missing_step(node: Any, step: str | int, shown: str, created: bool) -> str | None:
+    """Why ``node`` (at ``shown`` in the fixed inputs, or ``created`` on the way) has no
+    place ``step``, or None."""
+    if isinstance(step, str):
+        if isinstance(node, Mapping):
+            return None
+        return f"'{shown}' in 'fixed' is {_kind(node)}, not a mapping with a key '{step}'"
+    if isinstance(node, list) and step < len(node):
+        return None
+    if created:
+        return (f"'fixed' has no list '{shown}': a varied list element must be in a list "
+                "that 'fixed' gives whole (the list's length is part of the input)")  # fmt: skip
+    if isinstance(node, list):
+        return f"'{shown}' in 'fixed' is a list of {len(node)}: it has no element [{step}]"
+    return f"'{shown}' in 'fixed' is {_kind(node)}, not a list with an element [{step}]"
+
+
+def varied_input_problem(
+    fixed: Mapping[str, Any], path: InputPath, earlier: Mapping[str, InputPath]
+) -> str | None:
+    """Why ``path`` cannot be varied in ``fixed`` beside the ``earlier`` varied paths
+    (by name), or None: it names, holds or lies inside an input another path names; it
+    names a key that ``fixed`` gives too (fix it or vary it, not both); or it leads
+    where ``fixed`` has no place (:func:`with_input`)."""
+    for name, other in earlier.items():
+        if path == other:
+            return f"names the same input as '{name}', also varied"
+        if path[: len(other)] == other:
+            return f"lies inside '{name}', also varied"
+        if other[: len(path)] == path:
+            return f"holds '{name}', also varied"
+    parent = _place(fixed, path[:-1])
+    if isinstance(path[-1], str) and isinstance(parent, Mapping) and path[-1] in parent:
+        return "is both fixed and varied: give it in 'fixed' or vary it, not both"
+    try:
+        with_input(fixed, path, 0.0)
+    except ValueError as exc:
+        return str(exc)
+    return None
+
+
+def nearest_place(
+    document: Mapping[str, Any], path: InputPath, *, missing: bool = False
+) -> InputPath:
+    """The part of ``path`` that ``document`` holds (with ``missing``, and the next
+    step if it is a key the mapping there lacks): where a field error about ``path``
+    is best shown (pydantic names a missing member itself)."""
+    node: Any = document
+    for depth, step in enumerate(path):
+        if isinstance(step, int):
+            if not isinstance(node, list) or step >= len(node):
+                return path[:depth]
+        elif not isinstance(node, Mapping):
+            return path[:depth]
+        elif step not in node:
+            return path[: depth + int(missing)]
+        node = node[step]
+    return path
+
+
+def show_input_path(path: InputPath) -> str:
+    """``("chains", 0, "lengths", 2)`` -> ``"chains[0].lengths[2]"``."""
+    text = ""
+    for step in path:
+        text += f"[{step}]" if isinstance(step, int) else (f".{step}" if text else step)
+    return text
+
+
+def _place(document: Any, path: InputPath) -> Any:
+    """What ``document`` holds at ``path``, or None where it holds nothing."""
+    node = document
+    for step in path:
+        if isinstance(step, int):
+            if not isinstance(node, list) or step >= len(node):
+                return None
+        elif not isinstance(node, Mapping) or step not in node:
+            return None
+        node = node[step]
+    return node
 
 
 @dataclass(frozen=True)

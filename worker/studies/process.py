@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import math
 import time
+from collections.abc import Mapping
 from types import MappingProxyType
 from typing import Any
 
@@ -72,21 +73,28 @@ def _probe_indices(count: int, most: int = 9) -> list[int]:
 
 
 def dry_check(spec: StudySpec) -> list[dict[str, Any]]:
-    """At submission: objectives that are no number the process declares
-    (:attr:`ProcessDefinition.result_paths`), then a design run once, so that fixed
-    inputs the process refuses whatever the varied values, and objective paths it does
-    not report, are a 422 before anything is queued.  The first design is tried, then
-    others spread over the space until one validates: a design refused for its varied
-    values is no error (other designs may be fine), but fixed inputs every tried design
-    is refused for are.  A design too costly to run during a request (above the
-    process's sync limit and a thousandth of its cost limit) is not run."""
+    """At submission: varied paths the process takes no number at and objectives that
+    are no number it declares (:attr:`ProcessDefinition.result_paths`), then a design
+    run once, so that fixed inputs the process refuses whatever the varied values, and
+    objective paths it does not report, are a 422 before anything is queued.  The
+    varied paths are checked against the process's published input schema; then the
+    first design is tried, and others spread over the space until one validates: a
+    design refused for its varied values is no error (other designs may be fine), but
+    fixed inputs every tried design is refused for are, each at its place in
+    ``fixed``.  A refusal is for a varied value when it is at the varied place, inside
+    it or at a place holding it.  A design too costly to run during a request (above
+    the process's sync limit and a thousandth of its cost limit) is not run."""
     from worker.errors import InvalidInputs
     from worker.studies.evaluation import design_inputs
+    from worker.studies.number_inputs import unvariable_paths
     from worker.studies.paths import parse_result_path, reported
     from worker.submission import validate_inputs
 
     process = _target(spec)
-    undeclared = _undeclared_objectives(spec, process)
+    undeclared = [
+        *unvariable_paths(spec, process.inputs_schema),
+        *_undeclared_objectives(spec, process),
+    ]
     if undeclared:
         return undeclared
     varied = {_field_of(name) for name in spec.designs.names}
@@ -101,15 +109,14 @@ def dry_check(spec: StudySpec) -> list[dict[str, Any]]:
             inputs = validate_inputs(process, raw)
             break
         except InvalidInputs as exc:
-            if any(any(e["field"].startswith(v) for v in varied) for e in exc.errors):
+            if any(_related(e["field"], v) for e in exc.errors for v in varied):
                 return []  # refused for a varied value: the designs will say which
             refusals.append(exc)
     if inputs is None:
-        message = (
-            f"{spec.process} refuses every design tried ({len(refusals)}, spread over the "
-            f"space), the first with: {refusals[0]}"
+        tried = (
+            f"{spec.process} refuses every design tried ({len(refusals)}, spread over the space)"
         )
-        return [{"field": "inputs.fixed", "type": "value_error", "message": message}]
+        return [_in_fixed(spec.fixed, error, tried) for error in refusals[0].errors]
     if process.cost(inputs) > max(process.sync_cost_limit, process.cost_limit // 1000):
         return []
     try:
@@ -138,9 +145,37 @@ def _undeclared_objectives(spec: StudySpec, process: ProcessDefinition) -> list[
     ]  # fmt: skip
 
 
+def _in_fixed(fixed: Mapping[str, Any], error: Mapping[str, Any], tried: str) -> dict[str, Any]:
+    """A process's refusal of the fixed inputs as the study's field error: at the place
+    in ``fixed`` nearest to what the process names (``inputs.grid.points`` ->
+    ``inputs.fixed.grid.points``), the process's own field in the message if it differs."""
+    from worker.studies.paths import nearest_place, parse_input_path, show_input_path
+
+    named = error["field"].removeprefix("inputs").removeprefix(".")
+    try:
+        path = parse_input_path(named)
+        place = show_input_path(nearest_place(fixed, path, missing=error["type"] == "missing"))
+    except ValueError:  # "inputs" itself, or a field that is no input path
+        place = ""
+    at = f" (at '{named}')" if named and named != place else ""
+    return {**error, "field": f"inputs.fixed.{place}" if place else "inputs.fixed",
+            "message": f"{tried}{at}: {error['message']}"}  # fmt: skip
+
+
 def _field_of(name: str) -> str:
     """An input path as the field errors spell it: ``links[0]`` -> ``inputs.links[0]``."""
     return f"inputs.{name}"
+
+
+def _related(field: str, varied: str) -> bool:
+    """Whether a refusal at ``field`` may be for the value at ``varied`` (both spelt
+    ``inputs.links[0]``): the same place, a place inside it, or one holding it (a
+    list's or a mapping's own check), but not the whole inputs."""
+
+    def within(inner: str, outer: str) -> bool:
+        return inner == outer or inner.startswith((f"{outer}.", f"{outer}["))
+
+    return within(field, varied) or (field != "inputs" and within(varied, field))
 
 
 def chunk_size(spec: StudySpec) -> int:

@@ -6,17 +6,31 @@ exactly as it takes them; ``vary`` (a grid, ``{"path": [lo, hi, n]}``) or ``samp
 maps result paths (:mod:`.paths`) to ``"max"`` or ``"min"``.  Checks that need the
 target process itself (a design it refuses, an objective it does not report) are made
 on the first design at submission, not here.
+
+Every refusal names its place: ``vary.links[0]``, ``sample.bounds.alpha1_deg``,
+``objectives.optimum.eta``.  A varied path must have a place in
+``fixed`` (a key may be created, a list element must be there), apart from the other
+varied paths and from what ``fixed`` gives: checked here, once, so that every design's
+inputs can be built.
 """
 
 from __future__ import annotations
 
+import math
+from collections.abc import Mapping
 from typing import Annotated, Any, Literal
 
-from pydantic import Field, JsonValue, field_validator, model_validator
+from pydantic import BeforeValidator, Field, JsonValue, field_validator, model_validator
 
-from worker.common.specs import FrozenSpec, entries
+from worker.common.field_errors import field_error
+from worker.common.specs import FrozenSpec
 from worker.studies.designs import GridSpace, SampleSpace
-from worker.studies.paths import parse_input_path, parse_result_path
+from worker.studies.paths import (
+    InputPath,
+    parse_input_path,
+    parse_result_path,
+    varied_input_problem,
+)
 
 __all__ = ["MAX_DESIGNS", "MAX_OBJECTIVES", "SampleSpec", "StudySpec"]
 
@@ -29,16 +43,58 @@ MAX_CHUNK = 100_000
 NOT_STUDIED = frozenset({"design-study", "design-study-chunk"})
 
 
-GridAxis = Annotated[tuple[float, float, int], entries(3, "a varied input is [lo, hi, n]")]
-Bound = Annotated[tuple[float, float], entries(2, "a bound is [lo, hi]")]
+def _finite(value: Any) -> bool:
+    if isinstance(value, bool) or not isinstance(value, int | float):
+        return False
+    try:
+        return math.isfinite(float(value))
+    except OverflowError:  # an integer beyond any float
+        return False
 
 
-def _checked_paths(names: list[str], what: str) -> None:
-    for name in names:
+def _shown(value: Any) -> str:
+    text = repr(value)
+    return text if len(text) <= 60 else f"{text[:57]}..."
+
+
+def _range(value: Any, what: str, count: bool) -> Any:
+    """``value`` if it is ``[lo, hi]`` (``[lo, hi, n]`` with ``count``): finite numbers
+    lo <= hi whose difference is finite too, n a whole number from 1; else ValueError."""
+    size = 3 if count else 2
+    if not isinstance(value, list | tuple) or len(value) != size:
+        raise ValueError(f"{what}, not {_shown(value)}")
+    lo, hi = value[0], value[1]
+    if not (_finite(lo) and _finite(hi)):
+        raise ValueError(f"{what}: lo and hi must be finite numbers, not {_shown(value)}")
+    if lo > hi:
+        raise ValueError(f"{what}: lo {lo:g} exceeds hi {hi:g} (it needs lo <= hi)")
+    if not math.isfinite(float(hi) - float(lo)):
+        raise ValueError(f"{what}: hi - lo = {hi:g} - ({lo:g}) is beyond a float")
+    if count:
+        n = value[2]
+        whole = _finite(n) and float(n).is_integer() and not isinstance(n, bool)
+        if not whole or not 1 <= n <= MAX_DESIGNS:
+            raise ValueError(f"{what}: n (how many values) must be a whole number from 1 to "
+                             f"{MAX_DESIGNS:,}, not {_shown(n)}")  # fmt: skip
+    return value
+
+
+GridAxis = Annotated[
+    tuple[float, float, int],
+    BeforeValidator(lambda v: _range(v, "a varied input is [lo, hi, n]", count=True)),
+]
+Bound = Annotated[
+    tuple[float, float], BeforeValidator(lambda v: _range(v, "a bound is [lo, hi]", count=False))
+]
+
+
+def _checked_paths(model: type[FrozenSpec], names: Mapping[str, Any]) -> None:
+    """Each name an input path, or a field error at that name."""
+    for name, value in names.items():
         try:
             parse_input_path(name)
         except ValueError as exc:
-            raise ValueError(f"{what}: {exc}") from None
+            raise field_error(model, (name,), str(exc), value) from None
 
 
 class SampleSpec(FrozenSpec):
@@ -58,11 +114,8 @@ class SampleSpec(FrozenSpec):
 
     @field_validator("bounds")
     @classmethod
-    def _ordered(cls, bounds: dict[str, tuple[float, float]]) -> dict[str, tuple[float, float]]:
-        _checked_paths(list(bounds), "sample.bounds")
-        for name, (lo, hi) in bounds.items():
-            if lo > hi:
-                raise ValueError(f"sample.bounds[{name!r}]: lo {lo:g} exceeds hi {hi:g}")
+    def _paths(cls, bounds: dict[str, tuple[float, float]]) -> dict[str, tuple[float, float]]:
+        _checked_paths(cls, bounds)
         return bounds
 
 
@@ -76,6 +129,7 @@ class StudySpec(FrozenSpec):
     )
     vary: dict[str, GridAxis] | None = Field(
         None,
+        min_length=1,
         max_length=MAX_VARIED,
         description="A grid: input path -> [lo, hi, n] (n >= 1 values from lo to hi). "
         "Not with 'sample'.",
@@ -118,33 +172,39 @@ class StudySpec(FrozenSpec):
     @classmethod
     def _grid(cls, vary: dict[str, tuple[float, float, int]] | None) -> Any:
         if vary is not None:
-            _checked_paths(list(vary), "vary")
-            for name, (lo, hi, n) in vary.items():
-                if lo > hi or n < 1:
-                    raise ValueError(f"vary[{name!r}]: needs lo <= hi and n >= 1, not "
-                                     f"[{lo:g}, {hi:g}, {n}]")  # fmt: skip
+            _checked_paths(cls, vary)
         return vary
 
     @field_validator("objectives")
     @classmethod
     def _objective_paths(cls, objectives: dict[str, str]) -> dict[str, str]:
-        for name in objectives:
+        for name, direction in objectives.items():
             try:
                 parse_result_path(name)
             except ValueError as exc:
-                raise ValueError(f"objectives: {exc}") from None
+                raise field_error(cls, (name,), str(exc), direction) from None
         return objectives
 
     @model_validator(mode="after")
     def _one_design_set(self) -> StudySpec:
-        if (self.vary is None) == (self.sample is None):
-            raise ValueError("give exactly one of 'vary' (a grid) and 'sample'")
+        if self.vary is None and self.sample is None:
+            raise field_error(self, "vary", "give exactly one of 'vary' (a grid) and "
+                              "'sample'", None)  # fmt: skip
+        if self.vary is not None and self.sample is not None:
+            raise field_error(self, "sample", "give exactly one of 'vary' (a grid) and "
+                              "'sample', not both", None)  # fmt: skip
         space = self.designs
         if space.count > MAX_DESIGNS:
-            raise ValueError(f"the grid holds {space.count:,} designs, more than {MAX_DESIGNS:,}")
-        overlap = set(space.names) & set(self.fixed)
-        if overlap:
-            raise ValueError(f"{sorted(overlap)} are both fixed and varied")
+            raise field_error(self, "vary", f"the grid holds {space.count:,} designs, more "
+                              f"than {MAX_DESIGNS:,}", self.vary)  # fmt: skip
+        where = ("vary",) if self.vary is not None else ("sample", "bounds")
+        earlier: dict[str, InputPath] = {}
+        for name in space.names:
+            path = parse_input_path(name)
+            problem = varied_input_problem(self.fixed, path, earlier)
+            if problem is not None:
+                raise field_error(self, (*where, name), problem, name)
+            earlier[name] = path
         return self
 
     @property

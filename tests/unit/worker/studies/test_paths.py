@@ -9,7 +9,15 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from worker.studies.paths import parse_input_path, parse_result_path, read_result, with_input
+from worker.studies.paths import (
+    nearest_place,
+    parse_input_path,
+    parse_result_path,
+    read_result,
+    show_input_path,
+    varied_input_problem,
+    with_input,
+)
 
 RESULT: dict[str, Any] = {
     "optimum": {"eta": 0.42, "converged": True, "label": "x"},
@@ -57,9 +65,22 @@ def test_with_input_copies_and_sets() -> None:
 @pytest.mark.parametrize(
     ("fixed", "text", "message"),
     [
-        ({"links": [1, 2, 3]}, "links[3]", r"'links\[3\]' does not exist"),
-        ({}, "links[0]", r"'links\[0\]' does not exist"),
-        ({"links": 5}, "links.first", "not a mapping"),
+        (
+            {"links": [1, 2, 3]},
+            "links[3]",
+            r"'links' in 'fixed' is a list of 3: it has no element \[3\]",
+        ),
+        ({}, "links[0]", "'fixed' has no list 'links': a varied list element must be in a list"),
+        ({"ground": 0}, "lengths[0]", "'fixed' has no list 'lengths'"),
+        ({}, "chains[0].lengths[2]", "'fixed' has no list 'chains'"),
+        (
+            {"chains": [{"name": "a"}]},
+            "chains[0].lengths[2]",
+            r"'fixed' has no list 'chains\[0\].lengths'",
+        ),
+        ({"links": 5}, "links.first", "'links' in 'fixed' is the number 5, not a mapping"),
+        ({"links": {"a": 1}}, "links[0]", "'links' in 'fixed' is a mapping, not a list"),
+        ({"links": "abc"}, "links[0]", "'links' in 'fixed' is a text, not a list"),
     ],
 )
 def test_with_input_refuses_what_is_not_there(
@@ -67,6 +88,50 @@ def test_with_input_refuses_what_is_not_there(
 ) -> None:
     with pytest.raises(ValueError, match=message):
         with_input(fixed, parse_input_path(text), 1.0)
+
+
+FIXED: dict[str, Any] = {"links": [15, 14, 8], "grid": {"points_per_axis": 5}, "unit": "cm"}
+
+
+@pytest.mark.parametrize(
+    ("text", "earlier", "message"),
+    [
+        ("links[2]", [], None),
+        ("grid.bounds", [], None),  # a missing key is created
+        ("workspace.tilt_max_deg", ["links[0]"], None),  # a mapping on the way too
+        ("links[3]", [], "is a list of 3"),
+        ("chains[0]", [], "'fixed' has no list 'chains'"),
+        ("unit.x", [], "'unit' in 'fixed' is a text, not a mapping"),
+        ("grid.points_per_axis", [], "both fixed and varied"),
+        ("links", [], "both fixed and varied"),
+        ("links[1]", ["links[01]"], "names the same input as 'links[01]'"),
+        ("workspace.tilt_max_deg", ["workspace"], "lies inside 'workspace'"),
+        ("workspace", ["workspace.tilt_max_deg"], "holds 'workspace.tilt_max_deg'"),
+    ],
+)
+def test_varied_input_problems(text: str, earlier: list[str], message: str | None) -> None:
+    others = {name: parse_input_path(name) for name in earlier}
+    problem = varied_input_problem(FIXED, parse_input_path(text), others)
+    assert problem is None if message is None else message in (problem or ""), problem
+
+
+@pytest.mark.parametrize(
+    ("text", "missing", "place"),
+    [
+        ("links[1]", False, "links[1]"),
+        ("links[7]", False, "links"),
+        ("grid.points_per_axis", False, "grid.points_per_axis"),
+        ("grid.points", False, "grid"),
+        ("grid.points", True, "grid.points"),  # a missing member names itself
+        ("grid.points.deeper", True, "grid.points"),
+        ("unit.x", True, "unit"),
+        ("chains[0].loops[0]", True, "chains"),
+        ("chains[0].loops[0]", False, ""),
+    ],
+)
+def test_the_nearest_place_is_what_the_document_holds(text: str, missing: bool, place: str) -> None:
+    found = nearest_place(FIXED, parse_input_path(text), missing=missing)
+    assert show_input_path(found) == place
 
 
 @pytest.mark.parametrize(

@@ -9,6 +9,7 @@ import pytest
 
 from tests.unit.families.conftest import RecordingContext
 from worker.processes import default_registry
+from worker.studies.evaluation import evaluate_block
 from worker.studies.paths import parse_result_path, reported
 from worker.studies.process import STUDY, chunk_inputs, dry_check, study_cost
 from worker.studies.spec import StudySpec
@@ -52,8 +53,8 @@ def test_an_objective_must_be_a_declared_number() -> None:
 
 def test_fixed_inputs_refused_whatever_is_varied_are_refused() -> None:
     problems = dry_check(spec(fixed={**BASE["fixed"], "grid": {"points": 5}}))
-    assert [p["field"] for p in problems] == ["inputs.fixed"]
-    assert "grid" in problems[0]["message"]
+    assert [p["field"] for p in problems] == ["inputs.fixed.grid.points"]
+    assert "refuses every design tried" in problems[0]["message"]
 
 
 def test_a_first_design_refused_for_a_varied_value_is_no_error() -> None:
@@ -117,5 +118,38 @@ def test_fixed_inputs_refused_at_every_tried_design_are_refused() -> None:
                    "workspace": {"tilt_max_deg": 60, "torsion_deg": [0, 1000]}}}
     )  # fmt: skip
     (problem,) = dry_check(study)
-    assert problem["field"] == "inputs.fixed"
+    assert problem["field"] == "inputs.fixed.workspace.torsion_deg"
     assert "refuses every design tried" in problem["message"]
+
+
+@pytest.mark.parametrize(
+    ("space", "field"),
+    [
+        ({"vary": {"plots": [0, 1, 2]}}, "inputs.vary.plots"),
+        ({"vary": {"links[2]": [6, 10, 3], "lenghts_typo": [1, 2, 2]}}, "inputs.vary.lenghts_typo"),
+        ({"vary": {"task_points[0]": [1, 2, 2]}}, "inputs.vary.task_points[0]"),
+        ({"vary": None, "sample": {"count": 3, "bounds": {"grid": [1, 2]}}},
+         "inputs.sample.bounds.grid"),
+    ],
+)  # fmt: skip
+def test_a_varied_path_the_process_takes_no_number_at_is_refused(
+    space: dict[str, Any], field: str
+) -> None:
+    fixed = {"links": [15, 14, 8], "task_points": [[14, 14]]}
+    problems = dry_check(spec(fixed=fixed, **space))
+    assert [p["field"] for p in problems] == [field]
+    assert "planar3r-dexterity-map takes no number at" in problems[0]["message"]
+
+
+def test_a_refusal_at_a_place_holding_a_varied_input_is_for_its_value() -> None:
+    """Every tried design's joint 1 range is reversed by the varied upper limit: the
+    process refuses the whole ``joint_limits_deg``, which holds the varied input, so
+    the designs say why (the dry check does not blame ``fixed``)."""
+    limits = [[-150, 150], [-150, 150], [-175, 175]]
+    study = spec(fixed={**BASE["fixed"], "joint_limits_deg": limits},
+                 vary={"joint_limits_deg[0][1]": [-170, -160, 3]})  # fmt: skip
+    assert dry_check(study) == []
+    process = default_registry().get("planar3r-dexterity-map")
+    assert process is not None
+    (row,) = evaluate_block(study, process, 0, 1)
+    assert row.reason is not None and "inputs.joint_limits_deg" in row.reason
