@@ -173,8 +173,8 @@ def dexlab_problem(request: Request, exc: DexlabError) -> JSONResponse:
             instance=str(request.url.path),
             **extra,
         )
-    if isinstance(exc, StoreUnavailable):
-        log.warning("store trouble on %s: %s", request.url.path, exc.detail)
+    if isinstance(exc, StoreUnavailable):  # the cause names the store: logged, not shown
+        log.warning("store trouble on %s: %s (%s)", request.url.path, exc.detail, exc.__cause__)
     return problem_response(
         slug, detail=exc.detail, instance=str(request.url.path), headers=headers, **extra
     )
