@@ -114,8 +114,9 @@ def install_api_docs(app: FastAPI) -> None:
     openapi_url = app.openapi_url or "/openapi.json"
     oauth2_redirect_url = app.swagger_ui_oauth2_redirect_url or "/docs/oauth2-redirect"
 
+    # Coroutines: pages built from strings, never waiting for a threadpool thread.
     @app.get("/docs", include_in_schema=False)
-    def swagger_ui(request: Request) -> HTMLResponse:
+    async def swagger_ui(request: Request) -> HTMLResponse:
         return get_swagger_ui_html(
             openapi_url=_root(request) + openapi_url,
             title=f"{app.title} - Swagger UI",
@@ -127,11 +128,11 @@ def install_api_docs(app: FastAPI) -> None:
         )
 
     @app.get(oauth2_redirect_url, include_in_schema=False)
-    def swagger_ui_oauth2_redirect() -> HTMLResponse:
+    async def swagger_ui_oauth2_redirect() -> HTMLResponse:
         return get_swagger_ui_oauth2_redirect_html()
 
     @app.get("/redoc", include_in_schema=False)
-    def redoc(request: Request) -> HTMLResponse:
+    async def redoc(request: Request) -> HTMLResponse:
         page = get_redoc_html(
             openapi_url=_root(request) + openapi_url,
             title=f"{app.title} - ReDoc",

@@ -129,6 +129,7 @@ def create_app(settings: ServiceSettings | None = None) -> FastAPI:
             dispatcher.close()
             if metrics is not None:
                 metrics.unwatch_store()
+            await app.state.auth.aclose()
             store.close()
 
     app = FastAPI(

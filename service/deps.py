@@ -1,4 +1,8 @@
-"""FastAPI dependencies: the resources the lifespan built, handed to route handlers."""
+"""FastAPI dependencies: the resources the lifespan built, handed to route handlers.
+
+Each is a coroutine: FastAPI runs a plain ``def`` dependency in the threadpool, so a
+route that needs no store would otherwise wait for a thread while every thread waits
+on a store in trouble."""
 
 from __future__ import annotations
 
@@ -15,27 +19,27 @@ from worker.store.base import JobStore
 __all__ = ["DispatcherDep", "PoolDep", "RegistryDep", "SettingsDep", "StoreDep"]
 
 
-def get_store(request: Request) -> JobStore:
+async def get_store(request: Request) -> JobStore:
     store: JobStore = request.app.state.store
     return store
 
 
-def get_registry(request: Request) -> ProcessRegistry:
+async def get_registry(request: Request) -> ProcessRegistry:
     registry: ProcessRegistry = request.app.state.registry
     return registry
 
 
-def get_settings(request: Request) -> ServiceSettings:
+async def get_settings(request: Request) -> ServiceSettings:
     settings: ServiceSettings = request.app.state.settings
     return settings
 
 
-def get_pool(request: Request) -> WorkerPool | None:
+async def get_pool(request: Request) -> WorkerPool | None:
     pool: WorkerPool | None = request.app.state.pool
     return pool
 
 
-def get_dispatcher(request: Request) -> Dispatcher:
+async def get_dispatcher(request: Request) -> Dispatcher:
     dispatcher: Dispatcher = request.app.state.dispatcher
     return dispatcher
 

@@ -76,17 +76,22 @@ def _slug(exc: DexlabError) -> str:
     return "internal-error"
 
 
+#: ``Retry-After`` of a full disk (seconds): space comes back when an operator frees it
+#: or the retention sweep deletes expired jobs, not within a store's retry window.
+STORAGE_FULL_RETRY_AFTER_S = 60
+
+
 def _retry_headers(exc: DexlabError, extra: dict[str, Any]) -> dict[str, str] | None:
-    """``Retry-After`` (whole seconds) for a store that is down for now and for a quota
-    or a full queue (when a slot or a token is due); ``WWW-Authenticate`` for a request
-    without a valid key."""
+    """``Retry-After`` (whole seconds) for a store that is down or full for now and for
+    a quota or a full queue (when a slot or a token is due); ``WWW-Authenticate`` for a
+    request without a valid key."""
     hint = extra.pop("retry_after_s", None)
     if isinstance(exc, Unauthenticated):
         return {"WWW-Authenticate": exc.challenge}
-    retryable = (StoreUnavailable, QuotaExceeded, QueueFull)
-    if not isinstance(exc, retryable) or isinstance(exc, StorageFull):
+    if not isinstance(exc, StoreUnavailable | QuotaExceeded | QueueFull):
         return None
-    seconds = hint if isinstance(hint, int | float) and hint > 0 else 5
+    default = STORAGE_FULL_RETRY_AFTER_S if isinstance(exc, StorageFull) else 5
+    seconds = hint if isinstance(hint, int | float) and hint > 0 else default
     return {"Retry-After": str(max(1, math.ceil(seconds)))}
 
 
@@ -173,8 +178,8 @@ def dexlab_problem(request: Request, exc: DexlabError) -> JSONResponse:
             instance=str(request.url.path),
             **extra,
         )
-    if isinstance(exc, StoreUnavailable):
-        log.warning("store trouble on %s: %s", request.url.path, exc.detail)
+    if isinstance(exc, StoreUnavailable):  # the cause names the store: logged, not shown
+        log.warning("store trouble on %s: %s (%s)", request.url.path, exc.detail, exc.__cause__)
     return problem_response(
         slug, detail=exc.detail, instance=str(request.url.path), headers=headers, **extra
     )

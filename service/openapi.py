@@ -6,7 +6,7 @@ document, so this rewrites the generated document once (cached) after FastAPI bu
 it: each operation lists the problem statuses it can give (:data:`ROUTE_PROBLEMS` for
 the routes whose behaviour is known exactly; a conservative default for any other),
 every one with the ``ProblemDocument`` schema under ``application/problem+json``;
-the artifact download lists its media types and 304.
+the artifact download lists its media types and 304, the progress stream its events.
 """
 
 from __future__ import annotations
@@ -21,6 +21,7 @@ from pydantic.json_schema import models_json_schema
 
 from service.auth.public_routes import is_public
 from service.ogc.schemas import OGC_ROUTE_PROBLEMS, document_process_ids
+from service.openapi_streams import artifact_responses, event_stream_response
 from service.problems import PROBLEM_TYPES
 from service.routes.process_operations import FAMILY_PAPERS, family_of
 from service.schemas import RETENTION, ROUTE_DOCUMENTS, document_schemas
@@ -79,7 +80,8 @@ ROUTE_PROBLEMS: dict[tuple[str, str], tuple[int, ...]] = {
     # A failed job's results answer its failure's problem (job-error, worker-lost,
     # time-limit-exceeded: 500; storage-full: 507; storage-error: 503).
     ("get", "/v1/jobs/{job_id}/results"): (404, 410, 422, 503, 507),
-    ("get", "/v1/jobs/{job_id}/results/{name}"): (404, 410, 503, 507),
+    # 422: an If-None-Match header longer than 1000 characters.
+    ("get", "/v1/jobs/{job_id}/results/{name}"): (404, 410, 422, 503, 507),
     ("get", "/methods"): (),
     ("get", "/methods/{slug}"): (404,),
 }
@@ -93,9 +95,6 @@ class _RetentionMember(BaseModel):
 
 #: A page, as the routes that negotiate (``?f=html``, ``Accept: text/html``) answer.
 HTML_PAGE: dict[str, Any] = {"schema": {"type": "string"}}
-
-#: What an artifact download can be (the process description lists each job's).
-ARTIFACT_MEDIA_TYPES = ("image/png", "image/svg+xml", "text/csv", "application/x-npz")
 
 _DESCRIPTIONS = {
     400: "Malformed request: the body is not UTF-8 JSON or nests too deeply.",
@@ -134,16 +133,6 @@ def _problem_response(status: int) -> dict[str, Any]:
         "description": description,
         "content": {PROBLEM_JSON: {"schema": {"$ref": "#/components/schemas/ProblemDocument"}}},
     }
-
-
-def _artifact_responses(responses: dict[str, Any]) -> None:
-    binary = {"schema": {"type": "string", "format": "binary"}}
-    responses["200"] = {
-        "description": "The artifact's bytes (strong ETag; CSV and NPZ as attachments).",
-        "content": {media: binary for media in ARTIFACT_MEDIA_TYPES},
-        "headers": {"ETag": {"schema": {"type": "string"}, "description": "SHA-256 of the bytes."}},
-    }
-    responses["304"] = {"description": "Not modified (If-None-Match matched the ETag)."}
 
 
 def _example_key(title: str, taken: set[str]) -> str:
@@ -276,7 +265,9 @@ def _rewrite(
                 success, model = document_route
                 _json_response(responses, success, refs[model.__name__])
             if (method, path) == ("get", "/v1/jobs/{job_id}/results/{name}"):
-                _artifact_responses(responses)
+                artifact_responses(responses)
+            if (method, path) == ("get", "/v1/jobs/{job_id}/events"):
+                event_stream_response(responses)
     _page_alternatives(document)
     return document
 

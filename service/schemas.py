@@ -14,7 +14,13 @@ from typing import Any, Literal
 from pydantic import BaseModel, ConfigDict, Field
 from pydantic.json_schema import models_json_schema
 
-__all__ = ["DOCUMENT_SCHEMAS", "RETENTION", "ROUTE_DOCUMENTS", "document_schemas"]
+__all__ = [
+    "DOCUMENT_SCHEMAS",
+    "RETENTION",
+    "ROUTE_DOCUMENTS",
+    "ProgressEvent",
+    "document_schemas",
+]
 
 #: The execute body's ``retention_s`` (a number, never a string or a boolean).
 RETENTION: Any = Field(
@@ -196,6 +202,14 @@ class ProcessDescription(_Document):
     links: list[Link]
 
 
+class ProgressEvent(_Document):
+    """The data (JSON) of a ``progress`` event of ``GET /v1/jobs/{jobID}/events``."""
+
+    status: Literal["accepted", "running", "successful", "failed", "dismissed"]
+    progress: int = Field(ge=0, le=100, description="Percent done, rounded.")
+    message: str = Field(description="What the job is doing, as its status says.")
+
+
 class Landing(_Document):
     """``GET /`` and ``GET /v1``: where to go from here."""
 
@@ -211,6 +225,7 @@ DOCUMENT_SCHEMAS: tuple[type[BaseModel], ...] = (
     ProcessList,
     ProcessDescription,
     Landing,
+    ProgressEvent,
 )
 
 #: The 200 (or 201) document of each route: (method, path) -> (status, model).

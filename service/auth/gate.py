@@ -7,7 +7,8 @@ A pure ASGI middleware, before routing, so no route can be forgotten:
 - With keys, the public routes (:mod:`service.auth.public_routes`: health, the API
   description and docs, the landing pages, the process list and descriptions, the
   methods, problem types, the OGC landing, conformance and processes, ``/metrics``,
-  static files and the login page) answer anyone; every other route needs
+  static files and the login page) answer anyone, from the keys as last read (they
+  never wait for the store, so they answer while it is down); every other route needs
   ``Authorization: Bearer <secret>`` or a session cookie, and answers 401
   ``/problems/unauthorized`` with ``WWW-Authenticate: Bearer`` without one.  A wrong
   or revoked key is 401 wherever it is sent to a protected route.
@@ -71,13 +72,13 @@ class AuthGate:
         if not isinstance(auth, Authenticator):
             raise StoreUnavailable("The service is starting or stopping; try again.")
         headers = Headers(scope=scope)
-        try:
-            identity = await auth.identify(headers)
-        except (Unauthenticated, StoreUnavailable):
-            if public:  # a public route answers whatever came with it
+        if public:  # answers anyone, whatever came with it, and never waits for the store
+            try:
+                return auth.identify_now(headers)
+            except (Unauthenticated, StoreUnavailable):
                 return _NOBODY
-            raise
-        if public or identity.via in ("open", "bearer"):
+        identity = await auth.identify(headers)
+        if identity.via in ("open", "bearer"):
             return identity
         if identity.via == "session":
             if session_may(method, path):

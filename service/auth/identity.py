@@ -78,4 +78,9 @@ def get_identity(request: Request) -> Identity:
     return identity
 
 
-IdentityDep = Annotated[Identity, Depends(get_identity)]
+async def _identity_dependency(request: Request) -> Identity:
+    """:func:`get_identity` as a coroutine (no threadpool hop; see :mod:`service.deps`)."""
+    return get_identity(request)
+
+
+IdentityDep = Annotated[Identity, Depends(_identity_dependency)]

@@ -51,7 +51,11 @@ class KeyTable:
 
 
 class KeyCache:
-    """The keys of ``store``, at most ``max_age_s`` old (see the module docstring)."""
+    """The keys of ``store``, at most ``max_age_s`` old (see the module docstring).
+
+    No lock is held while the store is read: reads in different threads run side by
+    side, and the newest-started one's table is kept.  (Requests share one read in
+    flight: :class:`service.auth.authenticator.Authenticator`.)"""
 
     def __init__(
         self,
@@ -66,7 +70,7 @@ class KeyCache:
         self.use_interval_s = use_interval_s
         self.recheck_s = recheck_s
         self._clock = clock
-        self._lock = threading.Lock()
+        self._lock = threading.Lock()  # guards the fields below, never held over I/O
         self._table: KeyTable | None = None
         self._read_at = 0.0
         self._uses: dict[str, float] = {}
@@ -74,35 +78,44 @@ class KeyCache:
     def fresh(self, max_age_s: float | None = None) -> KeyTable | None:
         """The table if it is younger than ``max_age_s`` (default: the cache's), without
         blocking; else None."""
-        table = self._table
+        with self._lock:
+            table, read_at = self._table, self._read_at
         limit = self.max_age_s if max_age_s is None else max_age_s
-        if table is None or self._clock() - self._read_at >= limit:
+        if table is None or self._clock() - read_at >= limit:
             return None
         return table
 
+    def latest(self) -> KeyTable | None:
+        """The last table read, however old (None: never read)."""
+        return self._table
+
     def table(self, max_age_s: float | None = None) -> KeyTable:
         """The table, read again from the store when it is older than ``max_age_s``
-        (default: the cache's; blocking: one thread reads, the others wait for it).
+        (default: the cache's).  Raises StoreUnavailable."""
+        table = self.fresh(max_age_s)
+        return table if table is not None else self.read()
+
+    def read(self) -> KeyTable:
+        """Read the table from the store now (and write back when keys were last used).
         Raises StoreUnavailable."""
+        started = self._clock()
+        keys = self._store.api_keys()
+        table = KeyTable.of(keys)
         with self._lock:
-            table = self.fresh(max_age_s)
-            if table is not None:
-                return table
-            started = self._clock()
-            keys = self._store.api_keys()
-            self._table = table = KeyTable.of(keys)
-            self._read_at = started
-            self._write_uses(keys)
-            return table
+            if started >= self._read_at or self._table is None:
+                self._table, self._read_at = table, started
+            uses, self._uses = self._uses, {}
+        self._write_uses(keys, uses)
+        return table
 
     def note_use(self, key: ApiKey) -> None:
         """Remember that ``key`` authenticated a request now."""
-        self._uses[key.key_id] = time.time()
+        with self._lock:
+            self._uses[key.key_id] = time.time()
 
-    def _write_uses(self, keys: list[ApiKey]) -> None:
-        if not self._uses:
+    def _write_uses(self, keys: list[ApiKey], uses: dict[str, float]) -> None:
+        if not uses:
             return
-        uses, self._uses = self._uses, {}
         stored = {k.key_id: k.last_used for k in keys}
         due = [
             key_id
@@ -115,5 +128,6 @@ class KeyCache:
             self._store.record_key_use(due, max(uses[k] for k in due))
         except StoreUnavailable as exc:  # bookkeeping only: the next read tries again
             log.warning("could not record when API keys were last used: %s", exc)
-            for key_id in due:
-                self._uses.setdefault(key_id, uses[key_id])
+            with self._lock:
+                for key_id in due:
+                    self._uses.setdefault(key_id, uses[key_id])

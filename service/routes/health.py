@@ -25,6 +25,8 @@ async def live() -> dict[str, Any]:
     summary="The store answers and can be written, and at least one worker is up",
 )
 def ready(store: StoreDep, settings: SettingsDep, pool: PoolDep) -> Any:
+    """200 when the store takes a write and a worker is up; else 503 ``not-ready``.  The
+    store is tried once (no retry window), so a probe learns of an outage at once."""
     try:
         store.check_storage()  # answers, takes a write lock, has room for results
     except StoreUnavailable as exc:

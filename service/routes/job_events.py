@@ -1,17 +1,18 @@
 """``GET /v1/jobs/{jobID}/events``: a job's progress as Server-Sent Events.
 
 The stream opens with a ``retry:`` hint, then sends a ``progress`` event (JSON
-``{"status", "progress", "message"}``) at once and whenever one of them changes, read
-from the store at most every ``DEXLAB_EVENT_POLL_SECONDS``.  It ends after the event of
-a terminal status (``successful``, ``failed``, ``dismissed``), when the client goes
-away, or after ``DEXLAB_EVENT_STREAM_SECONDS`` (the browser then reconnects).  Between
-reads it sleeps as a coroutine, so an open stream holds no threadpool thread; a comment
-line every 15 s keeps proxies from closing a quiet stream.
+:class:`service.schemas.ProgressEvent`: ``{"status", "progress", "message"}``) at once
+and whenever one of them changes, read from the store at most every
+``DEXLAB_EVENT_POLL_SECONDS``.  It ends after the event of a terminal status
+(``successful``, ``failed``, ``dismissed``), when the client goes away, or after
+``DEXLAB_EVENT_STREAM_SECONDS`` (the browser then reconnects).  Between reads it
+sleeps as a coroutine, so an open stream holds no threadpool thread; a comment line
+every 15 s keeps proxies from closing a quiet stream.  The OpenAPI document describes
+each event (:mod:`service.openapi_streams`).
 """
 
 from __future__ import annotations
 
-import json
 import logging
 import time
 from collections.abc import AsyncIterator
@@ -25,6 +26,7 @@ from service.auth import IdentityDep
 from service.deps import StoreDep
 from service.job_lookup import find_job
 from service.pages import PagesDep
+from service.schemas import ProgressEvent
 from worker.contract import TERMINAL_STATUSES, JobRecord
 from worker.errors import StoreUnavailable
 from worker.store.base import JobStore
@@ -49,7 +51,9 @@ def _state(job: JobRecord) -> tuple[str, int, str]:
 
 def _event(state: tuple[str, int, str]) -> str:
     status, progress, message = state
-    data = json.dumps({"status": status, "progress": progress, "message": message})
+    data = ProgressEvent.model_validate(
+        {"status": status, "progress": progress, "message": message}
+    ).model_dump_json()
     return f"event: progress\ndata: {data}\n\n"
 
 
@@ -93,7 +97,7 @@ async def _events(
         200: {
             "description": "`progress` events (JSON `{status, progress, message}`) until "
             "the job ends; a `retry:` hint first.",
-            "content": {EVENT_STREAM: {"schema": {"type": "string"}}},
+            "content": {EVENT_STREAM: {"schema": {"type": "string"}}},  # see service.openapi
         }
     },
 )

@@ -29,7 +29,7 @@ from worker.errors import (
     StorageError,
 )
 from worker.processes import ProcessRegistry
-from worker.store.base import JobFilter, JobStore
+from worker.store.base import JobFilter, JobStore, StoredArtifact
 
 __all__ = ["router"]
 
@@ -183,30 +183,62 @@ def get_results(
     return finished_document(store, job)
 
 
-@router.get("/{job_id}/results/{name}", summary="Download one artifact (PNG, SVG, CSV, NPZ)")
+#: The artifact's validator; over-long values are 422 before anything is looked up.
+IfNoneMatch = Annotated[str | None, Header(max_length=1000)]
+
+
+def _artifact(
+    store: JobStore, job_id: str, name: str, owner: str | None
+) -> tuple[StoredArtifact, dict[str, str]]:
+    """The artifact of a successful job, and the headers of its download."""
+    job = _finished(store, job_id, owner)
+    stored = store.artifact(job_id, name)
+    if stored is None:
+        names = ", ".join(a.name for a in job.artifacts)
+        raise NoSuchArtifact(f"Job {job_id} has no artifact {name!r}; it has: {names}.")
+    return stored, artifact_headers(stored)
+
+
+@router.get(
+    "/{job_id}/results/{name}",
+    summary="Download one artifact (PNG, SVG, CSV, NPZ)",
+    description="`HEAD` answers the same status and headers (`Content-Length`, `ETag`, "
+    "the media type) without the bytes.",
+)
 def get_artifact(
     job_id: str,
     name: str,
     store: StoreDep,
     identity: IdentityDep,
-    if_none_match: Annotated[str | None, Header(max_length=1000)] = None,
+    if_none_match: IfNoneMatch = None,
 ) -> Response:
-    job = _finished(store, job_id, identity.owner_scope)
-    stored = store.artifact(job_id, name)
-    if stored is None:
-        names = ", ".join(a.name for a in job.artifacts)
-        raise NoSuchArtifact(f"Job {job_id} has no artifact {name!r}; it has: {names}.")
-    headers = artifact_headers(stored)
+    stored, headers = _artifact(store, job_id, name, identity.owner_scope)
     if if_none_match is not None and _etag_matches(if_none_match, headers["ETag"]):
         return Response(status_code=304, headers=headers)
     try:
         chunks = store.artifact_chunks(job_id, stored)
     except FileNotFoundError as exc:  # dismissed between the two reads
         raise JobDismissed(f"Job {job_id} was dismissed; it has no results.") from exc
-    except OSError as exc:
-        raise StorageError(f"The artifact {name!r} of job {job_id} cannot be read: {exc}") from exc
+    except OSError as exc:  # the error names the file: logged with the 503, not shown
+        raise StorageError(f"The artifact {name!r} of job {job_id} cannot be read.") from exc
     headers["Content-Length"] = str(stored.info.size)
     return StreamingResponse(chunks, media_type=stored.info.media_type, headers=headers)
+
+
+@router.head("/{job_id}/results/{name}", include_in_schema=False)
+def head_artifact(
+    job_id: str,
+    name: str,
+    store: StoreDep,
+    identity: IdentityDep,
+    if_none_match: IfNoneMatch = None,
+) -> Response:
+    """What GET answers, without the bytes (none is read)."""
+    stored, headers = _artifact(store, job_id, name, identity.owner_scope)
+    if if_none_match is not None and _etag_matches(if_none_match, headers["ETag"]):
+        return Response(status_code=304, headers=headers)
+    headers["Content-Length"] = str(stored.info.size)
+    return Response(status_code=200, headers=headers, media_type=stored.info.media_type)
 
 
 def _etag_matches(if_none_match: str, etag: str) -> bool:

@@ -36,8 +36,13 @@ class ExecuteRequest(BaseModel):
     retention_s: float | None = RETENTION
 
 
+# The process list and descriptions need no store and take no threadpool thread for
+# JSON: they answer at once even while every thread waits on a store in trouble.
+# (A page reads templates and method files: it runs in the threadpool.)
+
+
 @router.get("", summary="List the processes", response_model=None)
-def list_processes(
+async def list_processes(
     request: Request,
     response: Response,
     registry: RegistryDep,
@@ -46,7 +51,7 @@ def list_processes(
 ) -> dict[str, Any] | HTMLResponse:
     response.headers["Vary"] = "Accept"
     if wants_html(request):
-        return views.process_list_page(request, pages, registry)
+        return await run_in_threadpool(views.process_list_page, request, pages, registry)
     return {
         "processes": [
             {
@@ -66,7 +71,7 @@ def list_processes(
     summary="Describe a process: inputs schema, examples, limits",
     response_model=None,
 )
-def describe_process(
+async def describe_process(
     process_id: str,
     request: Request,
     response: Response,
@@ -79,7 +84,7 @@ def describe_process(
         raise NoSuchProcess(f"No process {process_id!r}; available: {', '.join(registry.ids())}.")
     response.headers["Vary"] = "Accept"
     if wants_html(request):
-        return views.process_page(request, pages, registry, definition)
+        return await run_in_threadpool(views.process_page, request, pages, registry, definition)
     doc = definition.describe()
     doc["links"] = [
         {

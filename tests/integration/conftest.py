@@ -70,7 +70,14 @@ def server(
 #: purpose: under pytest-xdist they run one after another on one process, beside the
 #: other modules (see `pytest_xdist_make_scheduler`).
 TIMED_MODULES = frozenset(
-    {"test_faults", "test_server", "test_fairness", "test_pages_events", "test_frozen_workers"}
+    {
+        "test_faults",
+        "test_server",
+        "test_fairness",
+        "test_pages_events",
+        "test_frozen_workers",
+        "test_store_outage",
+    }
 )
 TIMED = "timed"
 

@@ -298,7 +298,7 @@ class JobStore(Protocol):
 
     def check_storage(self) -> None:
         """Raise :class:`worker.errors.StoreUnavailable` (or ``StorageFull``) unless the
-        store can take a write now."""
+        store can take a write now: one try, no retry window (a readiness probe)."""
 
     def register_worker(self, worker_id: str, host: str, pid: int) -> None: ...
 

@@ -22,7 +22,7 @@ from worker.contract import JobStatus
 from worker.errors import StoreUnavailable
 from worker.store.artifact_files import CHUNK_BYTES
 from worker.store.postgres_quick import QuickStatements
-from worker.store.retry import Fault, retrying
+from worker.store.retry import Fault, Outage, retrying, single_try
 from worker.store.sql import SqlJobStore
 
 _RUNNING = JobStatus.RUNNING.value
@@ -35,6 +35,11 @@ _MIGRATION_LOCK = 0x646578_6C6162
 _SUBMISSION_LOCK = 0x646578_717565
 #: A session idle inside a transaction this long is ended by the server (ms).
 IDLE_IN_TRANSACTION_MS = 10_000
+
+#: How long a connection attempt may take (seconds; libpq's least is 2); a readiness
+#: probe's the least.
+CONNECT_TIMEOUT_S = 5
+PROBE_CONNECT_TIMEOUT_S = 2
 
 #: SQLSTATE classes and codes: retry, disk full, unusable.
 _TRANSIENT_STATES = ("08", "40001", "40P01", "55P03", "57P01", "57P02", "57P03", "53300")
@@ -62,6 +67,7 @@ class PostgresJobStore(QuickStatements, SqlJobStore):
             ) from exc
         self.url = url
         self.retry_s = retry_s
+        self.outage = Outage()
         self._local = threading.local()
         self._opened: list[Any] = []
         self._opened_lock = threading.Lock()
@@ -73,7 +79,7 @@ class PostgresJobStore(QuickStatements, SqlJobStore):
     def _sql(self, query: str) -> str:
         return query.replace("?", "%s")
 
-    def _conn(self) -> Any:
+    def _conn(self, connect_timeout_s: int = CONNECT_TIMEOUT_S) -> Any:
         import psycopg
         from psycopg.rows import dict_row
 
@@ -83,7 +89,7 @@ class PostgresJobStore(QuickStatements, SqlJobStore):
             conn = None
         if conn is None:
             conn = psycopg.connect(
-                self.url, autocommit=True, row_factory=dict_row, connect_timeout=5
+                self.url, autocommit=True, row_factory=dict_row, connect_timeout=connect_timeout_s
             )
             conn.execute(f"SET idle_in_transaction_session_timeout = {IDLE_IN_TRANSACTION_MS}")
             self._local.conn = conn
@@ -151,9 +157,10 @@ class PostgresJobStore(QuickStatements, SqlJobStore):
     def ping(self) -> None:
         self._exec(self._conn(), "SELECT 1 FROM jobs LIMIT 1").fetchall()
 
-    @retrying
+    @single_try
     def check_storage(self) -> None:
-        with self._write() as conn:
+        conn = self._conn(PROBE_CONNECT_TIMEOUT_S)
+        with conn.transaction():
             self._exec(conn, "SELECT 1 FROM jobs LIMIT 1").fetchall()
 
     # -- artifact bytes: chunk rows -------------------------------------------------------

@@ -39,7 +39,7 @@ from worker.store.job_listing import filter_clauses
 from worker.store.leases import Leases
 from worker.store.quotas import Quotas
 from worker.store.retention import Retention
-from worker.store.retry import Fault, retrying
+from worker.store.retry import Fault, Outage, retrying
 from worker.store.scheduling import Scheduling
 from worker.store.schema import MIGRATIONS
 from worker.store.tallies import Tallies
@@ -100,6 +100,8 @@ class SqlJobStore(
     ddl_types: ClassVar[Mapping[str, str]] = {}
     #: How long (seconds) a call keeps retrying transient faults before it gives up.
     retry_s: float = 5.0
+    #: Whether the store is known to be down (set by each dialect's constructor).
+    outage: Outage
 
     # -- dialect hooks ----------------------------------------------------------------
     def _conn(self) -> Conn:

@@ -17,7 +17,7 @@ from pathlib import Path
 from typing import Any, ClassVar
 
 from worker.store.artifact_files import FULL_ERRNOS, ArtifactFiles
-from worker.store.retry import Fault, retrying
+from worker.store.retry import Fault, Outage, retrying, single_try
 from worker.store.sql import SqlJobStore
 
 __all__ = ["SqliteJobStore"]
@@ -61,6 +61,7 @@ class SqliteJobStore(SqlJobStore):
     def __init__(self, path: Path | str, retry_s: float = 5.0) -> None:
         self.path = Path(path)
         self.retry_s = retry_s
+        self.outage = Outage()
         self.files = ArtifactFiles(self.path.parent / "artifacts")
         self._local = threading.local()
         self._opened: list[Any] = []
@@ -166,10 +167,10 @@ class SqliteJobStore(SqlJobStore):
     def ping(self) -> None:
         self._conn().execute("SELECT 1 FROM jobs LIMIT 1").fetchall()
 
-    @retrying
+    @single_try
     def check_storage(self) -> None:
-        """The database takes a write lock, and the artifact folder a file, with
-        :data:`MIN_FREE_BYTES` to spare."""
+        """The database takes a write lock (waiting at most SQLite's busy timeout), and
+        the artifact folder a file, with :data:`MIN_FREE_BYTES` to spare."""
         with self._write() as conn:
             conn.execute("SELECT 1 FROM jobs LIMIT 1").fetchall()
         self.files.check_writable(MIN_FREE_BYTES)

@@ -13,7 +13,7 @@ from fastapi.responses import JSONResponse
 from pydantic import AfterValidator, StringConstraints
 from starlette.responses import Response, StreamingResponse
 
-from service.auth import IdentityDep
+from service.auth import Identity, IdentityDep
 from service.deps import RegistryDep, StoreDep
 from service.documents import artifact_headers
 from service.job_lookup import find_job, missing_job
@@ -27,9 +27,11 @@ from service.ogc.results import select_outputs
 from service.ogc.schemas import ARTIFACT_CONTENT, RESULTS_SCHEMA, OgcJobList, OgcStatusInfo
 from service.ogc.urls import public_urls
 from service.ogc.vocabulary import JSON, OGC_PREFIX, TAG
-from service.pages import FormatQuery, PagesDep, wants_html
+from service.pages import FormatQuery, Pages, PagesDep, wants_html
 from worker.contract import JobStatus
 from worker.errors import NoSuchArtifact, NoSuchJob, NoSuchProcess, StorageError
+from worker.processes import ProcessRegistry
+from worker.store.base import JobStore
 from worker.store.sql import decode_cursor
 
 __all__ = ["router"]
@@ -224,6 +226,7 @@ _OUTPUT: dict[int | str, dict[str, Any]] = {
 @router.get(
     "/{jobID}/results/{outputID}",
     summary="One output of a finished job (where a by-reference output links to)",
+    description="`HEAD` answers the same status and headers without the content.",
     responses=_OUTPUT,
     response_model=None,
 )
@@ -237,29 +240,71 @@ def get_output(
     identity: IdentityDep,
     f: FormatQuery = None,
 ) -> Response:
+    return _output(jobID, outputID, request, store, registry, pages, identity, content=True)
+
+
+@router.head("/{jobID}/results/{outputID}", include_in_schema=False, response_model=None)
+def head_output(
+    jobID: str,
+    outputID: str,
+    request: Request,
+    store: StoreDep,
+    registry: RegistryDep,
+    pages: PagesDep,
+    identity: IdentityDep,
+    f: FormatQuery = None,
+) -> Response:
+    """What GET answers, without the content (a file's bytes are not read)."""
+    return _output(jobID, outputID, request, store, registry, pages, identity, content=False)
+
+
+def _headers_only(response: Response) -> Response:
+    """``response``'s status and headers (its ``Content-Length`` too), without a body."""
+    return Response(status_code=response.status_code, headers=dict(response.headers))
+
+
+def _output(
+    jobID: str,
+    outputID: str,
+    request: Request,
+    store: JobStore,
+    registry: ProcessRegistry,
+    pages: Pages,
+    identity: Identity,
+    *,
+    content: bool,
+) -> Response:
+    """One output (``content``: with its content; else only the status and headers)."""
     job, result = finished_job(store, jobID, identity.owner_scope)
     definition = registry.get(job.process_id)
     spec = process_outputs(definition).get(outputID) if definition is not None else None
     page = wants_html(request)
+    answer: Response
     if spec is not None and not spec.artifact and outputID in result:
         if page:
             urls = public_urls(request)
-            return ogc_pages.output_page(request, pages, urls, job, spec, value=result[outputID])
-        return JSONResponse(result[outputID], headers=ogc_pages.NEGOTIATED)
+            answer = ogc_pages.output_page(request, pages, urls, job, spec, value=result[outputID])
+        else:
+            answer = JSONResponse(result[outputID], headers=ogc_pages.NEGOTIATED)
+        return answer if content else _headers_only(answer)
     stored = store.artifact(jobID, outputID) if spec is not None and spec.artifact else None
     if spec is None or stored is None:
         raise NoSuchArtifact(f"Job {jobID} has no output {outputID!r}.")
     if page:
-        return ogc_pages.output_page(request, pages, public_urls(request), job, spec, stored=stored)
-    try:
-        chunks = store.artifact_chunks(jobID, stored)
-    except FileNotFoundError as exc:  # dismissed between the two reads
-        raise NoSuchJob(f"Job {jobID} was dismissed; its results were deleted.") from exc
-    except OSError as exc:
-        raise StorageError(f"The output {outputID!r} of job {jobID} cannot be read: {exc}") from exc
+        urls = public_urls(request)
+        answer = ogc_pages.output_page(request, pages, urls, job, spec, stored=stored)
+        return answer if content else _headers_only(answer)
     headers = {
         **artifact_headers(stored),
         **ogc_pages.NEGOTIATED,
         "Content-Length": str(stored.info.size),
     }
+    if not content:
+        return Response(status_code=200, headers=headers, media_type=stored.info.media_type)
+    try:
+        chunks = store.artifact_chunks(jobID, stored)
+    except FileNotFoundError as exc:  # dismissed between the two reads
+        raise NoSuchJob(f"Job {jobID} was dismissed; its results were deleted.") from exc
+    except OSError as exc:  # the error names the file: logged with the 503, not shown
+        raise StorageError(f"The output {outputID!r} of job {jobID} cannot be read.") from exc
     return StreamingResponse(chunks, media_type=stored.info.media_type, headers=headers)

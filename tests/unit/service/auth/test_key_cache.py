@@ -1,20 +1,25 @@
 """The key cache: what the store holds, never more than max_age_s old; last use
-written back at most once per interval."""
+written back at most once per interval; with the store down, requests share one read
+and its failure, and public routes do not wait for it (issue 26, finding 5)."""
 
 from __future__ import annotations
 
+import asyncio
 import time
-from collections.abc import Iterator
+from collections.abc import Iterator, Sequence
 from pathlib import Path
 
 import pytest
+from starlette.datastructures import Headers
 
 from service.auth.authenticator import Authenticator
+from service.auth.errors import Unauthenticated
 from service.auth.key_cache import KeyCache
 from service.auth.sessions import SessionSigner
+from worker.errors import StoreUnavailable
 from worker.store import open_store
 from worker.store.api_keys import hash_secret
-from worker.store.base import JobStore
+from worker.store.base import ApiKey, JobStore
 
 
 @pytest.fixture
@@ -99,3 +104,72 @@ async def test_an_unknown_secret_is_looked_up_again_in_a_recent_read(store: JobS
     key = await auth.live_key("alice-secret-123456")
     assert key is not None and key.name == "alice"
     assert await auth.live_key("") is None
+
+
+class FlakyKeys:
+    """The key reads of ``store``, or, while ``down``, a read that fails after
+    ``delay_s`` (a store retrying, then giving up); ``reads`` counts them."""
+
+    def __init__(self, store: JobStore, delay_s: float) -> None:
+        self.store = store
+        self.delay_s = delay_s
+        self.down = False
+        self.reads = 0
+
+    def api_keys(self) -> list[ApiKey]:
+        self.reads += 1
+        if self.down:
+            time.sleep(self.delay_s)
+            raise StoreUnavailable("The job store is busy or unreachable.", retry_after_s=5.0)
+        return self.store.api_keys()
+
+    def record_key_use(self, key_ids: Sequence[str], when: float) -> None:
+        self.store.record_key_use(key_ids, when)
+
+
+def flaky_auth(store: JobStore, delay_s: float, clock: Clock) -> tuple[Authenticator, FlakyKeys]:
+    keys = FlakyKeys(store, delay_s)
+    cache = KeyCache(keys, clock=clock)  # type: ignore[arg-type]
+    return Authenticator(cache, SessionSigner(b"s" * 32, lifetime_s=60)), keys
+
+
+@pytest.mark.anyio
+async def test_requests_share_one_read_of_the_keys_and_its_failure(store: JobStore) -> None:
+    """With the store down, 20 requests that need the keys wait for one read together
+    and all get its StoreUnavailable when it gives up: not one read after another."""
+    clock = Clock()
+    auth, keys = flaky_auth(store, 0.3, clock)
+    keys.down = True
+    began = time.monotonic()
+    outcomes = await asyncio.gather(*(auth.table() for _ in range(20)), return_exceptions=True)
+    took = time.monotonic() - began
+    assert all(isinstance(o, StoreUnavailable) for o in outcomes), outcomes
+    assert keys.reads == 1 and took < 0.6, (keys.reads, took)
+    keys.down = False  # the next request reads again, and the table is back
+    assert not (await auth.table()).configured and keys.reads == 2
+
+
+@pytest.mark.anyio
+async def test_public_routes_identify_from_the_last_table_without_waiting(
+    store: JobStore,
+) -> None:
+    """identify_now (the routes that answer anyone) answers from the table read last,
+    however old, while the store is down, and starts a read for the next requests;
+    identify (every other route) waits for that read and gets its 503."""
+    store.create_key("alice", hash_secret("alice-secret-123456"), admin=False)
+    clock = Clock()
+    auth, keys = flaky_auth(store, 0.5, clock)
+    assert auth.keys.table().configured and keys.reads == 1
+    keys.down = True
+    clock.now += 5.0  # the table is stale
+    headers = Headers({"authorization": "Bearer alice-secret-123456"})
+    began = time.monotonic()
+    identity = auth.identify_now(headers)
+    assert time.monotonic() - began < 0.1
+    assert identity.name == "alice" and identity.via == "bearer"
+    with pytest.raises(Unauthenticated):
+        auth.identify_now(Headers({"authorization": "Bearer wrong-secret-1234567"}))
+    with pytest.raises(StoreUnavailable):
+        await auth.identify(headers)
+    assert keys.reads == 2  # the read identify_now started is the one identify waited for
+    await auth.aclose()
