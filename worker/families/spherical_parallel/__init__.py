@@ -152,6 +152,7 @@ CONDITIONING_MAP = ProcessDefinition(
 
 DESIGN_SPACE = ProcessDefinition(
     id="spm-design-space",
+    version="1.1.0",  # index_map: contour lines broken only under their labels
     result_paths=DESIGN_SPACE_RESULT_PATHS,
     title="Spherical parallel manipulator: design space for a prescribed workspace",
     method_doc="spherical-parallel",
@@ -202,6 +203,7 @@ DESIGN_SPACE = ProcessDefinition(
 
 OPTIMISATION = ProcessDefinition(
     id="spm-optimisation",
+    version="1.1.0",  # index_map: contour lines broken only under labels; torsion_sweeps [-]
     result_paths=OPTIMISATION_RESULT_PATHS,
     title="Spherical parallel manipulator: optimum design for a prescribed workspace",
     method_doc="spherical-parallel",
