@@ -88,6 +88,7 @@ _INDICES = (
 
 CONDITIONING_MAP = ProcessDefinition(
     id="spm-conditioning-map",
+    version="1.1.0",  # torsion_sweeps: 1/kappa [-]
     result_paths=CONDITIONING_MAP_RESULT_PATHS,
     paper_points=CONDITIONING_MAP_PAPER_POINTS,
     title="Spherical parallel manipulator: conditioning over a workspace",

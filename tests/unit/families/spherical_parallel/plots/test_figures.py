@@ -113,6 +113,10 @@ def test_sweep_panels_and_legend() -> None:
         assert text in strings, text
 
 
+def test_sweep_panels_give_1_over_kappa_as_a_pure_number() -> None:
+    assert [ax.get_ylabel() for ax in sweep_figure().axes] == [r"$1/\kappa$ [-]"] * 2
+
+
 def test_index_map_labels_sit_on_their_lines_in_their_gaps() -> None:
     # Contours reaching the edge of the rotated rectangle (the design space): no label
     # hangs over a line's end (off the field), no line is broken where no label is.
