@@ -56,7 +56,8 @@ def main() -> None:
         "it today (`scripts/render_figures.py` regenerates this page; the service's own",
         f"PNGs are {150} dpi, these {DPI}). Every figure passes the figure check",
         "(`tests/figure_check.py`): no overlapping or clipped text, colour bars beside their",
-        "axes, every axis labelled with its unit, mathtext for symbols.",
+        "axes, every axis labelled with its unit, mathtext for symbols, contour lines",
+        "broken only under their labels.",
         "",
     ]
     for definition in default_registry():

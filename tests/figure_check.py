@@ -5,7 +5,8 @@ defect (empty: none):
 
 - **overlap**: two visible text artists (titles, axis labels, tick labels, contour
   labels, legend entries, annotations) whose boxes intersect;
-- **clipped**: a text artist reaching beyond the figure's edge;
+- **clipped**: a text artist reaching beyond the figure's edge, or beyond the box it is
+  clipped to (a contour label cut off at its axes' edge);
 - **colour bar**: a colour bar longer than the axes it belongs to, or not beside them;
 - **axis label**: an axis with ticks but no label, or a label without a unit in
   brackets (``[mm]``, ``[°]``, ``[-]``) unless the axis declares itself dimensionless
@@ -13,7 +14,9 @@ defect (empty: none):
 - **symbol**: a Greek letter, a subscript (``d_z``) or a Greek letter's name
   (``kappa``) written as plain text instead of mathtext (``$\\kappa$``);
 - **constant field**: an image, mesh or filled contour whose finite values are all
-  equal, unless the axes say why (:func:`worker.common.figures.explained_constant`).
+  equal, unless the axes say why (:func:`worker.common.figures.explained_constant`);
+- **broken contour** and **contour label**: a contour line with a gap where no label is,
+  a label hanging over the end of its line (:mod:`tests.figure_contours`).
 """
 
 from __future__ import annotations
@@ -30,6 +33,8 @@ from matplotlib.cm import ScalarMappable
 from matplotlib.figure import Figure
 from matplotlib.text import Text
 from matplotlib.transforms import Bbox
+
+from tests.figure_contours import contour_defects
 
 __all__ = ["figure_defects"]
 
@@ -151,6 +156,15 @@ def _constant_fields(ax: Axes) -> Iterator[str]:
             yield f"constant field: {ax.get_title() or 'an axes'} shows {finite[0]:g} everywhere"
 
 
+def _cut_off(text: Text, box: Bbox) -> bool:
+    """Whether ``text`` is clipped to a box (a contour label to its axes) it overruns."""
+    clip = text.get_clip_box() if text.get_clip_on() else None
+    if clip is None:
+        return False
+    return bool(box.x0 < clip.x0 - EDGE_PX or box.y0 < clip.y0 - EDGE_PX
+                or box.x1 > clip.x1 + EDGE_PX or box.y1 > clip.y1 + EDGE_PX)  # fmt: skip
+
+
 def _text_defects(fig: Figure, renderer: RendererBase) -> list[str]:
     defects: list[str] = []
     boxes: list[tuple[Text, Bbox]] = []
@@ -163,6 +177,8 @@ def _text_defects(fig: Figure, renderer: RendererBase) -> list[str]:
         if (box.x0 < edge.x0 - EDGE_PX or box.y0 < edge.y0 - EDGE_PX
                 or box.x1 > edge.x1 + EDGE_PX or box.y1 > edge.y1 + EDGE_PX):  # fmt: skip
             defects.append(f"clipped: {_label(text)!r} reaches beyond the figure's edge")
+        elif _cut_off(text, box):
+            defects.append(f"clipped: {_label(text)!r} reaches beyond the box it is clipped to")
         for problem in _symbol_defects(text.get_text()):
             defects.append(f"symbol: {_label(text)!r} has {problem}")
     for (a, box_a), (b, box_b) in itertools.combinations(boxes, 2):
@@ -229,4 +245,5 @@ def figure_defects(fig: Figure) -> list[str]:
             continue
         defects += _axis_defects(ax)
         defects.extend(_constant_fields(ax))
+        defects += contour_defects(ax, renderer)
     return defects

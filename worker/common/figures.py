@@ -11,13 +11,13 @@ another job's figure).
 from __future__ import annotations
 
 import io
-from collections.abc import Callable
 from typing import Any
 
 import numpy as np
 from matplotlib import rc_context
 from matplotlib.figure import Figure
 
+from worker.common.contour_labels import contour_labels, freeze_layout
 from worker.contract import Artifact
 
 __all__ = [
@@ -28,6 +28,7 @@ __all__ = [
     "dimensionless",
     "explained_constant",
     "figure_artifacts",
+    "freeze_layout",
     "plain_text",
 ]
 
@@ -99,41 +100,3 @@ def explained_constant(ax: Any, why: str | None = None) -> None:
         0.5, 0.5, why, transform=ax.transAxes, ha="center", va="center", fontsize=9,
         wrap=True, bbox={"boxstyle": "round", "facecolor": "white", "alpha": 0.85},
     )  # fmt: skip
-
-
-def contour_labels(
-    ax: Any,
-    lines: Any,
-    *,
-    margin: float = 0.05,
-    keep: Callable[[float, float], bool] | None = None,
-    **kwargs: Any,
-) -> list[Any]:
-    """``ax.clabel(lines, **kwargs)``, keeping only readable labels: none within
-    ``margin`` (a fraction of the view) of the axes' edge, where it would be clipped or
-    run into a title, none where ``keep(x, y)`` (data coordinates) is false, and every
-    label upright (rotations in [-90°, 90°]).  Labels are placed once to find where they
-    would go, then again at the places kept, so no contour line keeps a gap for a label
-    that was dropped."""
-    inline = kwargs.pop("inline", True)
-    probe = list(ax.clabel(lines, inline=False, **kwargs))
-    (x0, x1), (y0, y1) = sorted(ax.get_xlim()), sorted(ax.get_ylim())
-    dx, dy = margin * (x1 - x0), margin * (y1 - y0)
-    places = []
-    for text in probe:
-        x, y = (float(v) for v in text.get_position())
-        inside = x0 + dx <= x <= x1 - dx and y0 + dy <= y <= y1 - dy
-        if inside and (keep is None or keep(x, y)):
-            places.append((x, y))
-        text.remove()
-    for attribute in ("labelTexts", "labelCValues", "labelXYs"):
-        getattr(lines, attribute, []).clear()
-    if not places:
-        return []
-    kwargs.pop("levels", None)
-    texts = list(ax.clabel(lines, manual=places, inline=inline, **kwargs))
-    for text in texts:
-        angle = text.get_rotation() % 360.0
-        if 90.0 < angle < 270.0:
-            text.set_rotation(angle - 180.0)
-    return texts

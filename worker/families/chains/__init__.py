@@ -51,6 +51,7 @@ def _run_fourbar_grashof(spec: FourBarGrashofSpec, ctx: JobContext) -> JobOutcom
 
 CHAIN_PARALLELISM = ProcessDefinition(
     id="chain-parallelism",
+    version="1.1.0",  # chain_graphs: Q with its unit
     result_paths=CHAIN_PARALLELISM_RESULT_PATHS,
     title="Kinematic chains: uniform rigidity (P) and parallelism (Q)",
     method_doc="chains",

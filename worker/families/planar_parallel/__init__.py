@@ -53,6 +53,7 @@ def _run_optimisation(spec: OptimisationSpec, ctx: JobContext) -> JobOutcome:
 
 CONDITIONING_MAP = ProcessDefinition(
     id="planar2dof-conditioning-map",
+    version="1.1.0",  # figures: a contour label only where it sits on its line
     result_paths=CONDITIONING_MAP_RESULT_PATHS,
     title="2-DOF planar parallel robot: conditioning map",
     method_doc="planar-parallel",
@@ -109,6 +110,7 @@ CONDITIONING_MAP = ProcessDefinition(
 
 OPTIMISATION = ProcessDefinition(
     id="planar2dof-optimisation",
+    version="1.1.0",  # figures: a contour label only where it sits on its line
     result_paths=OPTIMISATION_RESULT_PATHS,
     paper_points=OPTIMISATION_PAPER_POINTS,
     title="2-DOF planar parallel robot: optimum design (proximal arms)",

@@ -66,6 +66,7 @@ _LIMITS_TEXT = (
 
 DEXTERITY_MAP = ProcessDefinition(
     id="planar3r-dexterity-map",
+    version="1.1.0",  # radial_section: the curve stops where the arm cannot reach
     result_paths=DEXTERITY_MAP_RESULT_PATHS,
     title="Three-link planar arm: dexterity map",
     method_doc="planar-serial",
@@ -125,6 +126,7 @@ DEXTERITY_MAP = ProcessDefinition(
 
 SYNTHESIS = ProcessDefinition(
     id="planar3r-synthesis",
+    version="1.1.0",  # synthesis_cases: lengths to 4 digits, with their unit
     result_paths=SYNTHESIS_RESULT_PATHS,
     title="Three-link planar arm: link lengths from task points or a trajectory",
     method_doc="planar-serial",
@@ -181,6 +183,7 @@ SYNTHESIS = ProcessDefinition(
 
 DESIGN = ProcessDefinition(
     id="planar3r-design",
+    version="1.1.0",  # design_maps: lengths to 4 digits, with their unit
     result_paths=DESIGN_RESULT_PATHS,
     title="Three-link planar arm: link lengths designed for the task under joint limits",
     method_doc="planar-serial",

@@ -88,6 +88,7 @@ _INDICES = (
 
 CONDITIONING_MAP = ProcessDefinition(
     id="spm-conditioning-map",
+    version="1.1.0",  # torsion_sweeps: 1/kappa [-]
     result_paths=CONDITIONING_MAP_RESULT_PATHS,
     paper_points=CONDITIONING_MAP_PAPER_POINTS,
     title="Spherical parallel manipulator: conditioning over a workspace",
@@ -152,6 +153,7 @@ CONDITIONING_MAP = ProcessDefinition(
 
 DESIGN_SPACE = ProcessDefinition(
     id="spm-design-space",
+    version="1.1.0",  # index_map: contour lines broken only under their labels
     result_paths=DESIGN_SPACE_RESULT_PATHS,
     title="Spherical parallel manipulator: design space for a prescribed workspace",
     method_doc="spherical-parallel",
@@ -202,6 +204,7 @@ DESIGN_SPACE = ProcessDefinition(
 
 OPTIMISATION = ProcessDefinition(
     id="spm-optimisation",
+    version="1.1.0",  # index_map: contour lines broken only under labels; torsion_sweeps [-]
     result_paths=OPTIMISATION_RESULT_PATHS,
     title="Spherical parallel manipulator: optimum design for a prescribed workspace",
     method_doc="spherical-parallel",

@@ -15,7 +15,7 @@ from typing import Any
 
 import numpy as np
 
-from worker.common.figures import figure_artifacts
+from worker.common.figures import figure_artifacts, plain_text
 from worker.contract import Artifact, JobContext, JobOutcome
 from worker.families.chains import kinematics as chains
 from worker.families.chains.errata import parallelism_errata_notes
@@ -229,6 +229,13 @@ def _general_notes(entries: list[dict[str, Any]], ranking: dict[str, Any]) -> li
     return notes
 
 
+def _printed(value: float) -> str:
+    """``value`` to 5 significant digits (Q of the paper's Fig. 2d: 34592), a power of
+    ten in mathtext (``1.5$\\times 10^{6}$``)."""
+    mantissa, _, exponent = f"{value:.5g}".partition("e")
+    return mantissa if not exponent else rf"{mantissa}$\times 10^{{{int(exponent)}}}$"
+
+
 def _artifacts(
     spec: ChainParallelismSpec,
     entries: list[dict[str, Any]],
@@ -247,7 +254,7 @@ def _artifacts(
             loop_lengths=tuple(tuple(_floats(loop)) for loop in structure.loop_lengths),
             caption=f"{entry['links']} links, {entry['joints']} joints, mobility "
             f"{entry['mobility']} · $P_{{\\mathrm{{norm}}}}$ = {entry['P_normalized']:.4g} · "
-            f"$Q$ = {entry['Q']:.4g}",
+            f"$Q$ = {_printed(entry['Q'])} {plain_text(spec.length_unit)}$^4$",
         )
         for entry, structure in zip(entries, structures, strict=True)
     ]

@@ -67,7 +67,8 @@ class ChainGraph:
     joints: tuple[tuple[str, str], ...]
     loops: tuple[tuple[str, ...], ...]
     loop_lengths: tuple[tuple[float, ...], ...]
-    #: A line under the panel, built by the job (it may use mathtext; never user text).
+    #: A line under the panel, built by the job: mathtext, any user text in it (the length
+    #: unit) escaped with :func:`worker.common.figures.plain_text`.
     caption: str = ""
 
 
@@ -302,7 +303,7 @@ def _draw_graph(ax: Axes, graph: ChainGraph) -> None:
     for spine in ax.spines.values():
         spine.set_color("0.85")
     ax.set_title(plain_text(graph.name), fontsize=11, fontweight="bold")
-    if graph.caption:  # built by the job, mathtext allowed (no user text)
+    if graph.caption:  # built by the job: mathtext, user text escaped
         ax.set_xlabel(graph.caption, fontsize=8, color="0.3")
 
 

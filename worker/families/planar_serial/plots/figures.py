@@ -197,7 +197,8 @@ def radial_section_figure(
 ) -> Figure:
     """d_z against the distance d from the base along one ray (the paper's Fig 7).
 
-    ``distance`` (n,), ``d_z`` (n,).  The paper's regions 1-4 are shaded and numbered
+    ``distance`` (n,), ``d_z`` (n,), 0 or NaN where the arm cannot reach: the curve
+    stops there (it is drawn only where d_z > 0).  The paper's regions 1-4 are shaded and numbered
     above the plot, the full-dexterity bands filled, and task points marked at their
     distances from the base (with unlimited joints d_z depends on d only).  ``note``
     (mathtext allowed) is written under the title: what a reader needs to read the
@@ -226,7 +227,8 @@ def radial_section_figure(
     shade_regions(ax, radii, d_end)
     for lo, hi in band_list:
         ax.axvspan(lo, hi, ymax=1 / 1.05, color=_BAND_FILL, lw=0, zorder=1)
-    ax.plot(dist, dz, color=_CURVE_COLOR, lw=2.2, zorder=3)
+    # Out of reach the curve stops (no d_z = 0 drawn along the floor beyond the reach).
+    ax.plot(dist, np.where(dz > 0.0, dz, np.nan), color=_CURVE_COLOR, lw=2.2, zorder=3)
     distance_marks(ax, marks, labels, d_end)
     ax.set_xlabel(f"distance from the base d along the ray at {angle_deg:g}° "
                   f"[{plain_text(length_unit)}]", fontsize=11)  # fmt: skip
@@ -274,7 +276,8 @@ def synthesis_cases_figure(
     for ax, case, dmap in zip(axes, cases, maps, strict=True):
         heatmap_panel(ax, dmap, overlay, length_unit, axes_inches=4.2,
                       joint_limited=case.joint_limited)  # fmt: skip
-        detail = "$l_1, l_2, l_3$ = " + ", ".join(f"{v:g}" for v in case.links)
+        detail = ("$l_1, l_2, l_3$ = " + ", ".join(f"{v:.4g}" for v in case.links)
+                  + f" {plain_text(length_unit)}")  # fmt: skip
         if case.joint_limited:
             detail += " · joint-limited"
         ax.set_title(f"{case.label}\n{detail}", fontsize=11)

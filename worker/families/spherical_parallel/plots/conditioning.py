@@ -230,8 +230,7 @@ def torsion_sweep_figure(
         ax.set_title(label + ("  (outside the prescribed cone)" if outside else ""),
                      fontsize=10, loc="left")  # fmt: skip
         ax.set_ylim(bottom, 1.0)
-        ax.set_ylabel(r"$1/\kappa$", fontsize=11)
-        dimensionless(ax.yaxis)
+        ax.set_ylabel(r"$1/\kappa$ [-]", fontsize=11)
         ax.grid(alpha=0.3)
         ax.tick_params(labelsize=9)
     axes[-1].set_xlim(float(psi3[0]), float(psi3[-1]))

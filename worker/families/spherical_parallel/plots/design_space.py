@@ -20,7 +20,13 @@ from matplotlib.lines import Line2D
 from matplotlib.patches import Patch, Polygon
 from numpy.typing import ArrayLike
 
-from worker.common.figures import bad_figure_argument, contour_labels, dimensionless, plain_text
+from worker.common.figures import (
+    bad_figure_argument,
+    contour_labels,
+    dimensionless,
+    freeze_layout,
+    plain_text,
+)
 from worker.families.spherical_parallel.plots.conditioning import NO_SOLUTION_COLOR, FloatArray
 
 if TYPE_CHECKING:
@@ -247,9 +253,8 @@ def index_distribution_figure(
     masked = np.ma.masked_invalid(grid)
     ax.pcolormesh(a1, a2, masked, shading="gouraud", cmap=cmap, norm=norm, rasterized=True,
                   zorder=2)  # fmt: skip
-    if finite.size and varies:
-        lines = ax.contour(a1, a2, masked, levels=8, colors="white", linewidths=0.8, zorder=3)
-        contour_labels(ax, lines, fmt="%.3f", fontsize=8)
+    lines = (ax.contour(a1, a2, masked, levels=8, colors="white", linewidths=0.8, zorder=3)
+             if finite.size and varies else None)  # fmt: skip
     outline = np.concatenate([a1[0, :], a1[:, -1], a1[-1, ::-1], a1[::-1, 0]])
     outline2 = np.concatenate([a2[0, :], a2[:, -1], a2[-1, ::-1], a2[::-1, 0]])
     ax.plot(outline, outline2, color="black", lw=1.2, zorder=4)
@@ -270,4 +275,7 @@ def index_distribution_figure(
     if np.isnan(grid).any():
         handles.append(Patch(color=NO_SOLUTION_COLOR, label="misses part of the workspace"))
     fig.legend(handles=handles, loc="outside lower center", ncols=2, fontsize=9, frameon=False)
+    if lines is not None:  # last, on the final layout: the gaps stay under the labels
+        freeze_layout(fig)
+        contour_labels(ax, lines, fmt="%.3f", fontsize=8)
     return fig

@@ -6,6 +6,7 @@ import json
 from typing import Any
 
 import pytest
+from matplotlib.figure import Figure
 
 from tests.unit.families.conftest import RecordingContext, unrendered_artifacts
 from worker.contract import JobOutcome
@@ -189,3 +190,18 @@ def test_plots_false_gives_no_artifacts() -> None:
     outcome, _ = run({"chains": [FIG_4A], "plots": False})
     assert outcome.artifacts == ()
     assert outcome.result["chains"][0]["Q"] == 11114
+
+
+def test_graph_captions_give_q_in_its_unit(monkeypatch: pytest.MonkeyPatch) -> None:
+    figures: dict[str, Figure] = {}
+
+    def capture(fig: Figure, stem: str, title: str) -> Any:
+        figures[stem] = fig
+        return unrendered_artifacts(fig, stem, title)
+
+    monkeypatch.setattr(parallelism, "figure_artifacts", capture)
+    run_example(0)  # Fig. 2: five quadrangles in cm
+    captions = {ax.get_title(): ax.get_xlabel() for ax in figures["chain_graphs"].axes}
+    assert captions["Fig 2d"].endswith(r"$Q$ = 34592 cm$^4$")
+    assert captions["Fig 2c"].endswith(r"$Q$ = 1$\times 10^{5}$ cm$^4$")
+    assert all(caption.endswith("cm$^4$") for caption in captions.values())

@@ -6,7 +6,7 @@ import itertools
 import subprocess
 import sys
 import time
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import Any
 
 import numpy as np
@@ -300,6 +300,19 @@ def test_section_skips_empty_regions() -> None:
     assert "region 1" in strings and "region 3" in strings and "region 2" not in strings
 
 
+def test_section_stops_where_the_arm_cannot_reach() -> None:
+    # The job passes d_z = 0 beyond the reach (18 here), and NaN may come too: the curve
+    # ends at the reach instead of running along the floor to the end of the view.
+    d = np.linspace(0.0, 20.0, 201)
+    d_z = np.where(d < 18.0, np.clip(1.4 - d / 18.0, 0.0, 1.0), 0.0)
+    d_z[d > 19.5] = np.nan
+    fig = p.radial_section_figure(d, d_z, region_radii=RADII, bands=BANDS, title="t")
+    (curve,) = [line for line in fig.axes[0].lines if len(line.get_xdata()) == d.size]
+    shown = np.asarray(curve.get_ydata(), dtype=float)
+    assert np.isnan(shown[d >= 18.0]).all()
+    np.testing.assert_array_equal(shown[d < 18.0], d_z[d < 18.0])
+
+
 def test_section_rejects_mismatched_arrays() -> None:
     with pytest.raises(ValueError, match=r"The 'd_z' parameter of radial_section_figure"):
         p.radial_section_figure(np.linspace(0, 1, 5), np.zeros(4), region_radii=RADII,
@@ -322,9 +335,17 @@ def test_cases_panels_share_one_colour_bar(count: int, cases_render: Rendered) -
     for label in LABELS:
         assert strings.count(label) == count
     titles = [ax.get_title() for ax in fig.axes[:count]]
-    assert titles[0] == "Case 1: ideal\n$l_1, l_2, l_3$ = 8, 6, 4"
+    assert titles[0] == "Case 1: ideal\n$l_1, l_2, l_3$ = 8, 6, 4 mm"
     if count == 3:
         assert titles[2].endswith("· joint-limited")
+
+
+def test_cases_titles_give_lengths_to_four_significant_digits_and_their_unit() -> None:
+    # An optimum's links as the search returns them (planar3r-design's example 0).
+    panel = replace(case_panels(1)[0], label="Optimum", links=(14.5846, 5.27883, 0.0370962))
+    fig = p.synthesis_cases_figure([panel], task_points=None, task_labels=None,
+                                   trajectory=None, title="t", length_unit="mm")  # fmt: skip
+    assert fig.axes[0].get_title() == "Optimum\n$l_1, l_2, l_3$ = 14.58, 5.279, 0.0371 mm"
 
 
 @pytest.mark.parametrize("count", [0, 4])

@@ -9,6 +9,7 @@ import numpy as np
 import pytest
 from matplotlib.figure import Figure
 
+from tests.figure_check import figure_defects
 from tests.unit.common.test_figures import png_pixels, svg_strings
 from worker.common.figures import figure_artifacts
 from worker.families.spherical_parallel.plots import conditioning as p
@@ -110,6 +111,21 @@ def test_sweep_panels_and_legend() -> None:
     strings = svg_strings(figure_artifacts(fig, "sweep", "Sweep")[1].data)
     for text in ("Sweep test", "optimum", "paper", "prescribed torsion range"):
         assert text in strings, text
+
+
+def test_sweep_panels_give_1_over_kappa_as_a_pure_number() -> None:
+    assert [ax.get_ylabel() for ax in sweep_figure().axes] == [r"$1/\kappa$ [-]"] * 2
+
+
+def test_index_map_labels_sit_on_their_lines_in_their_gaps() -> None:
+    # Contours reaching the edge of the rotated rectangle (the design space): no label
+    # hangs over a line's end (off the field), no line is broken where no label is.
+    s, t = np.meshgrid(np.linspace(-1, 1, 41), np.linspace(-1, 1, 41))
+    a1, a2 = 90 + 0.5 * (45 * s + 15 * t), 90 + 0.5 * (15 * t - 45 * s)
+    values = 0.08 + 0.15 * s * s + 0.03 * t
+    fig = d.index_distribution_figure(a1, a2, values, title="Index", subtitle=r"$\beta$ = 75°")
+    (lines,) = [c for c in fig.axes[0].collections if hasattr(c, "labelTexts")]
+    assert lines.labelTexts and figure_defects(fig) == []
 
 
 def test_sweep_with_gaps() -> None:
