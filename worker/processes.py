@@ -148,6 +148,16 @@ class ProcessDefinition:
     #: Every numeric place of the result, with its unit, symbol and meaning
     #: (:mod:`worker.result_paths`); checked against the worked examples by the tests.
     result_paths: tuple[ResultPathInfo, ...] = ()
+    #: The time limit of one attempt for these validated inputs (a job whose work
+    #: grows with its inputs); capped at ``time_limit_s``, the limit the process
+    #: publishes.  None: ``time_limit_s`` for every job.
+    attempt_time_limit: Callable[[Any], float] | None = None
+
+    def time_limit_for(self, inputs: Any) -> float:
+        """The time limit of one attempt of a job with these validated inputs."""
+        if self.attempt_time_limit is None:
+            return self.time_limit_s
+        return min(self.time_limit_s, self.attempt_time_limit(inputs))
 
     @cached_property
     def inputs_schema(self) -> dict[str, Any]:

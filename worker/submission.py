@@ -120,7 +120,7 @@ def submit(
     new = NewJob(
         process_id=process_id,
         inputs=stored_inputs,
-        time_limit_s=settings.time_limit_for(definition.time_limit_s),
+        time_limit_s=settings.time_limit_for(definition.time_limit_for(inputs)),
         max_attempts=settings.max_attempts,
         idempotency_key=idempotency_key,
         request_hash=request_hash(process_id, stored_inputs) if idempotency_key else None,

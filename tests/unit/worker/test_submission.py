@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import dataclasses
 from pathlib import Path
 from typing import Any
 
@@ -91,6 +92,29 @@ def test_time_limit_is_capped_by_settings(tmp_path: Path) -> None:
     assert job.time_limit_s == 7
     job, _ = submit(store, REGISTRY, WorkerSettings(), "toy", {"sizes": [1], "inner": {"n": 1}})
     assert job.time_limit_s == 50
+
+
+def test_a_time_limit_from_the_inputs_is_capped_by_the_process_and_settings(
+    tmp_path: Path,
+) -> None:
+    # a process whose work grows with its inputs gives each job its own limit
+    toy = REGISTRY.get("toy")
+    assert toy is not None
+    scaled = dataclasses.replace(toy, attempt_time_limit=lambda i: 10.0 * sum(i.sizes))
+    registry = ProcessRegistry((scaled,))
+    store = open_store(f"sqlite:///{tmp_path / 'j.db'}")
+    limits = [
+        submit(store, registry, settings, "toy", {"sizes": sizes, "inner": {"n": 1}})[
+            0
+        ].time_limit_s
+        for sizes, settings in (
+            ([1], WorkerSettings()),
+            ([2, 1], WorkerSettings()),
+            ([9], WorkerSettings()),  # 90 s asked, the process allows 50
+            ([2, 1], WorkerSettings(max_time_limit_s=20)),
+        )
+    ]
+    assert limits == [10, 30, 50, 20]
 
 
 def test_request_hash_ignores_key_order_but_not_values() -> None:

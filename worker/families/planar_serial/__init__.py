@@ -7,7 +7,7 @@ paper's regions, the exact full-dexterity bands, task points and a trajectory.
 ``planar3r-synthesis``: link lengths from task points or a trajectory by eqs (10)-(11),
 checked in the paper's three cases.
 ``planar3r-design``: link lengths (and the base) chosen for the task under its joint
-limits by a global search over the exact d_z, against the paper's rule.
+limits by a multi-start global search over the exact d_z, against the paper's rule.
 
 Importing this package builds the two process definitions and nothing else: the job
 modules (numpy maps, matplotlib figures) are imported when a job runs.
@@ -18,9 +18,11 @@ from __future__ import annotations
 from worker.contract import JobContext, JobOutcome
 from worker.families.planar_serial.costs import (
     COST_LIMIT,
+    MIN_DESIGN_TIME_LIMIT_S,
     SYNC_COST_LIMIT,
     TIME_LIMIT_S,
     design_cost,
+    design_time_limit,
     dexterity_map_cost,
     synthesis_cost,
 )
@@ -189,28 +191,32 @@ DESIGN = ProcessDefinition(
     method_doc="planar-serial",
     files=(
         *figure_files("design_maps", "d_z of the paper's rule and the optimum"),
-        *figure_files("convergence", "Best design per generation"),
+        *figure_files("convergence", "Best design per generation of every start"),
         ProcessFile(
             "design_maps.npz", "d_z maps of the paper's rule and the optimum (NumPy arrays)"
         ),
-        ProcessFile("convergence.csv", "Best design per generation (CSV)"),
+        ProcessFile("convergence.csv", "Best design per start and generation (CSV)"),
     ),
     description=(
-        "Link lengths l1, l2, l3 (and, with base_box, the base position) chosen for task "
-        "points and/or a trajectory under the joint limits the arm really has: objective "
-        "'max_min_dz' maximises the smallest d_z over the task, 'min_length' finds the "
-        "shortest arm keeping d_z >= dz_target everywhere, within link_bounds and "
-        "total_length_max. d_z is exact (closed-form events under joint limits); the search "
-        "is seeded differential evolution (every generation run) polished by Nelder-Mead, "
-        "deterministic for a seed. Reports the optimum with d_z at every task point and "
-        "along the trajectory, the paper's rule (eqs 10-11) under the same limits and the "
-        "improvement over it, the convergence (evaluations, best per generation, success, "
-        "message), the two d_z maps and the convergence curve (docs/methods/planar-serial.md). "
-        + _LIMITS_TEXT.format(
-            unit="designs evaluated x task points and trajectory samples x orientations "
-            "tested per point (1 without joint limits, at most 21 sub-arcs under them), "
-            "plus the two maps"
-        )
+        "Link lengths l1 and l2 (and, with base_box, the base position) chosen for task "
+        "points and/or a trajectory under the joint limits the arm really has, the tool "
+        "link l3 held (input l3; default the paper rule's l3 for total_length_max), or l3 "
+        "designed too within link_bounds: objective 'max_min_dz' maximises the smallest "
+        "d_z over the task, 'min_length' finds the shortest arm keeping d_z >= dz_target "
+        "everywhere, within total_length_max. d_z is exact (closed-form events under "
+        "joint limits); the search is 'starts' independent starts (default 8) of seeded "
+        "differential evolution (every generation run), each polished by Nelder-Mead, "
+        "deterministic for a seed; the best is kept, and success needs at least two starts "
+        "agreeing on the best score within 1e-4. Reports the optimum with d_z at every "
+        "task point and along the trajectory, the paper's rule (eqs 10-11) under the same "
+        "limits and the improvement over it, the convergence (every start's best, "
+        "evaluations, best per generation, success, message), the two d_z maps and the "
+        "convergence curves (docs/methods/planar-serial.md). "
+        + "Cost: designs evaluated x task points and trajectory samples x orientations "
+        "tested per point (1 without joint limits, at most 21 sub-arcs under them), plus "
+        "3,400 per evaluation of d_z and the two maps; at most "
+        f"{COST_LIMIT:,}. Time limit per attempt: in proportion to the cost, from "
+        f"{MIN_DESIGN_TIME_LIMIT_S:g} s to {TIME_LIMIT_S:g} s at the cost limit."
     ),
     inputs_model=DesignSpec,
     run=_run_design,
@@ -227,17 +233,22 @@ DESIGN = ProcessDefinition(
         "same limits, with d_min_used, d_max_used and how l3 was chosen; null if no l3 fits.",
         "improvement": "max_min_dz: gain in min_dz (absolute and relative); min_length: "
         "length saved and whether each design meets the target. Null without paper_rule.",
-        "convergence": "success, message, seed, evaluations, generations, "
-        "best_per_generation [{generation, min_dz, total_length, score}], global_search "
-        "and polish details.",
-        "search_space": "link_bounds (defaults resolved), total_length_max, base_box, "
-        "free_variables.",
+        "convergence": "success (at least two starts agree on the best score within "
+        "agreement_tol, and min_length's target is met), message, seed, starts [{start, "
+        "seed, score, min_dz, total_length, meets_target, links, base, agrees_with_best, "
+        "evaluations}], kept_start, agreeing_starts, agreement_tol, evaluations (all "
+        "starts), generations, best_per_generation [{generation, min_dz, total_length, "
+        "score}] of the kept start, its global_search and polish details.",
+        "search_space": "link_bounds (defaults resolved; a held l3 as [l3, l3]), l3_held "
+        "(null when designed), l3_chosen, total_length_max, base_box, free_variables.",
         "evaluation_points": "How many task points and trajectory samples the objective uses.",
         "length_unit": "The length unit.",
     },
     cost=design_cost,
     cost_limit=COST_LIMIT,
     time_limit_s=TIME_LIMIT_S,
+    attempt_time_limit=design_time_limit,
+    version="2.0.0",
 )
 
 #: This family's processes, in the order GET /v1/processes lists them.

@@ -18,8 +18,10 @@ __all__ = [
     "COST_LIMIT",
     "SYNC_COST_LIMIT",
     "TIME_LIMIT_S",
+    "design_calls",
     "design_cost",
     "design_evaluations",
+    "design_time_limit",
     "dexterity_map_cost",
     "synthesis_cost",
 ]
@@ -31,6 +33,8 @@ COST_LIMIT = 3_000_000_000
 SYNC_COST_LIMIT = 101 * 101
 #: Wall-clock limit of one job attempt, in seconds.
 TIME_LIMIT_S = 1800.0
+#: The least time limit of a planar3r-design attempt, however cheap.
+MIN_DESIGN_TIME_LIMIT_S = 300.0
 
 
 def _grid_points(grid: GridSpec) -> int:
@@ -61,22 +65,33 @@ def synthesis_cost(spec: SynthesisSpec) -> int:
 
 
 def design_evaluations(spec: DesignSpec) -> int:
-    """Most designs the search evaluates: population x (generations + 1), the polish
-    (at most 200 per free variable), one per generation for the convergence record."""
+    """Most designs the search evaluates: per start, population x (generations + 1)
+    for differential evolution, the polish (at most 200 per free variable) and one per
+    generation for the convergence record."""
     variables = spec.free_variables
     global_stage = spec.population_size * variables * (spec.max_generations + 1)
-    return global_stage + POLISH_EVALUATIONS_PER_VARIABLE * variables + spec.max_generations
+    one_by_one = POLISH_EVALUATIONS_PER_VARIABLE * variables + spec.max_generations
+    return spec.starts * (global_stage + one_by_one)
 
 
-#: The fixed cost of evaluating one design, in evaluation points (numpy's per-call
-#: overhead costs about as much as 200 points).
-DESIGN_OVERHEAD_POINTS = 200
+def design_calls(spec: DesignSpec) -> int:
+    """Most evaluations of d_z the search makes (each pays numpy's per-call overhead):
+    per start, one per generation of differential evolution (its population at once),
+    one per design of the polish and of the convergence record."""
+    variables = spec.free_variables
+    one_by_one = POLISH_EVALUATIONS_PER_VARIABLE * variables + spec.max_generations
+    return spec.starts * (spec.max_generations + 1 + one_by_one)
+
+
+#: The fixed cost of one evaluation of d_z (numpy's and the optimiser's per-call
+#: overhead), in units: about as much as 200 points with 17 sub-arcs each.
+DESIGN_CALL_UNITS = 3400
 
 
 def design_cost(spec: DesignSpec) -> int:
-    """Designs evaluated x (evaluation points + 200 for the per-design overhead) x
-    orientations tested per point, plus the two maps of the plots (grid points x
-    orientations tested).
+    """Designs evaluated x evaluation points x orientations tested per point, plus
+    3400 units per evaluation of d_z (its fixed overhead), plus the two maps of the
+    plots (grid points x orientations tested).
 
     Exact d_z tests one orientation per point without joint limits, one per sub-arc
     between events (at most 21) under them.
@@ -90,5 +105,13 @@ def design_cost(spec: DesignSpec) -> int:
     points = len(spec.task_points or ()) + (
         spec.trajectory.samples if spec.trajectory is not None else 0
     )
-    search = design_evaluations(spec) * (points + DESIGN_OVERHEAD_POINTS) * per_point
+    search = design_evaluations(spec) * points * per_point + design_calls(spec) * DESIGN_CALL_UNITS
     return search + 2 * _grid_points(spec.grid) * per_point
+
+
+def design_time_limit(spec: DesignSpec) -> float:
+    """The time limit of one attempt: in proportion to the cost (a job at COST_LIMIT
+    gets TIME_LIMIT_S, more than 5 times what it needs on one core), at least
+    MIN_DESIGN_TIME_LIMIT_S; so it grows with ``starts`` as the work does."""
+    share = design_cost(spec) / COST_LIMIT
+    return min(TIME_LIMIT_S, max(MIN_DESIGN_TIME_LIMIT_S, share * TIME_LIMIT_S))

@@ -177,40 +177,40 @@ _EXAMPLE_2_DESIGN: dict[str, Any] = {
     "total_length_max": 60.0,
     "paper_l3": EXAMPLE_2_L3,
 }
-#: Example 1 with the paper's tool length kept as the least l3.
-_EXAMPLE_1_TOOL = [[1.0, 37.0], [1.0, 37.0], [EXAMPLE_1_L3, 37.0]]
+#: Example 1 with the tool designed as well, each link at least 1 unit long.
+_EXAMPLE_1_ALL_LINKS = [[1.0, 37.0], [1.0, 37.0], [1.0, 37.0]]
 
 DESIGN_EXAMPLES = (
     ProcessExample(
-        title="Example 1 under its joint limits, total length at most 37",
+        title="Example 1 under its joint limits, total length at most 37, l3 = 8 held",
         inputs=MappingProxyType(_EXAMPLE_1_DESIGN),
         description="The cubic trajectory and task points A..E with th1, th2 in [-150, 150] "
-        "and th3 in [-175, 175] degrees: the paper's rule gives (15, 14, 8) and a worst "
-        "d_z of 0.727 (at E); the optimum within the same 37 units keeps every point fully "
-        "dexterous with a short last link.",
+        "and th3 in [-175, 175] degrees, the tool held at the rule's l3 = 8 for 37 units (the "
+        "default): the paper's rule gives (15, 14, 8) and a worst d_z of 0.727 (at E); the "
+        "optimum (13.18, 13.18, 8) lifts it to 0.772.",
     ),
     ProcessExample(
-        title="Example 1 with the paper's tool length kept (l3 >= 8)",
-        inputs=MappingProxyType({**_EXAMPLE_1_DESIGN, "link_bounds": _EXAMPLE_1_TOOL}),
-        description="The same task with l3 at least the paper's 8: the optimum spends "
-        "the 37 units differently and lifts the worst d_z from 0.727 to about 0.760.",
+        title="Example 1 with the tool designed too (every link at least 1)",
+        inputs=MappingProxyType({**_EXAMPLE_1_DESIGN, "link_bounds": _EXAMPLE_1_ALL_LINKS}),
+        description="link_bounds make l3 a design variable: the optimum (14.40, 6.44, 1) "
+        "keeps every point fully dexterous with the shortest tool allowed, in 21.8 of the "
+        "37 units.",
     ),
     ProcessExample(
-        title="Example 1 with the base free in a 10 x 10 box (l3 >= 8)",
-        inputs=MappingProxyType(
-            {**_EXAMPLE_1_DESIGN, "link_bounds": _EXAMPLE_1_TOOL, "base_box": [-5, 5, -5, 5]}
-        ),
-        description="Moving the base as well: with l3 >= 8 and total length 37 the task "
+        title="Example 1 with the base free in a 10 x 10 box (l3 = 8 held)",
+        inputs=MappingProxyType({**_EXAMPLE_1_DESIGN, "base_box": [-5, 5, -5, 5]}),
+        description="Moving the base as well: with l3 = 8 and total length 37 the task "
         "becomes fully dexterous everywhere.",
     ),
     ProcessExample(
-        title="Example 2 under its joint limits, total length at most 60",
+        title="Example 2 under its joint limits, total length at most 60, l3 = 15 held",
         inputs=MappingProxyType(_EXAMPLE_2_DESIGN),
-        description="Seven task points A..G: the rule's (23, 22, 15) leaves B at d_z = "
-        "0.777; the optimum within 60 units raises the worst point to about 0.97.",
+        description="Seven task points A..G, the tool held at the rule's l3 = 15 for 60 "
+        "units: the rule's (23, 22, 15) leaves B at d_z = 0.777; the optimum "
+        "(20.98, 20.98, 15) raises the worst point to 0.794.",
     ),
     ProcessExample(
-        title="Shortest arm keeping Example 1's task points fully dexterous",
+        title="Shortest arm keeping Example 1's task points fully dexterous, l3 = 1",
         inputs=MappingProxyType(
             {
                 "task_points": _points(EXAMPLE_1_TASK_POINTS),
@@ -219,11 +219,13 @@ DESIGN_EXAMPLES = (
                 "objective": "min_length",
                 "dz_target": 1.0,
                 "total_length_max": 37.0,
+                "l3": 1.0,
                 "paper_l3": EXAMPLE_1_L3,
                 "round_distances": True,
             }
         ),
-        description="objective 'min_length': the least l1 + l2 + l3 that keeps d_z = 1 at "
-        "A..E under the joint limits (the rule's 37 units do not).",
+        description="objective 'min_length' with a 1-unit tool held: the least "
+        "l1 + l2 + l3 that keeps d_z = 1 at A..E under the joint limits, 21.83 units (the "
+        "rule's 37 units do not).",
     ),
 )

@@ -11,6 +11,7 @@ coarse to keep each run short; few run examples, always the same ones
 
 from __future__ import annotations
 
+import math
 from typing import Any
 
 import pytest
@@ -139,22 +140,41 @@ def test_synthesis_accepted_inputs_compute(
 DESIGN = definition("planar3r-design")
 
 
+def tool_outside(total: float, task: list[list[float]], tool: float | None) -> set[str]:
+    """The field a held l3 makes bad: ``l3`` when given, else total_length_max (the paper
+    rule's l3 for the budget, (total - d_max - 1) / 2, must be positive); either way l1
+    and l2 need room (0.001 total each) and the links a spread of at most 1e6."""
+    field = "inputs.total_length_max" if tool is None else "inputs.l3"
+    if tool is not None and not MIN_LENGTH <= tool <= MAX_LENGTH:
+        return {"inputs.l3"}
+    l3 = tool if tool is not None else (total - max(math.hypot(*p) for p in task) - 1) / 2
+    lowest = 1e-3 * total
+    if l3 <= 0 or l3 > total - 2 * lowest:
+        return {field}
+    if max(total - l3, l3) / min(lowest, l3) > MAX_LENGTH_RATIO:
+        return {field}
+    return set()
+
+
 @given(
     total=length,
     task=st.lists(point, min_size=1, max_size=4),
     joint_limits=limits,
     lowest=st.one_of(st.none(), length),
+    tool=st.one_of(st.none(), length),
     box=st.one_of(st.none(), st.tuples(coordinate, coordinate).map(sorted)),
 )
-@example(total=1e-6, task=[[1e6, 1e6]], joint_limits=None, lowest=None, box=None)
+@example(total=1e-6, task=[[1e6, 1e6]], joint_limits=None, lowest=None, tool=None, box=None)
 @example(total=1e6, task=[[1e-6, 0.0]], joint_limits=[[-150, 150], [-150, 150], [-175, 175]],
-         lowest=1e-6, box=None)  # fmt: skip
+         lowest=1e-6, tool=None, box=None)  # fmt: skip
 @example(total=10.0, task=[[0.0, 0.0]], joint_limits=[[0, 90], [-45, 45], [-180, 180]],
-         lowest=None, box=(-1e6, 1e6))  # fmt: skip
+         lowest=None, tool=None, box=(-1e6, 1e6))  # fmt: skip
+@example(total=1e6, task=[[3.0, 4.0]], joint_limits=None, lowest=None, tool=1.0, box=None)
+@example(total=30.0, task=[[3.0, 4.0]], joint_limits=None, lowest=1.0, tool=1.0, box=None)
 @property_settings(12)
 def test_design_accepted_inputs_compute(
     total: float, task: list[list[float]], joint_limits: Any, lowest: float | None,
-    box: tuple[float, float] | None,
+    tool: float | None, box: tuple[float, float] | None,
 ) -> None:  # fmt: skip
     raw: dict[str, Any] = {
         "task_points": task,
@@ -162,22 +182,31 @@ def test_design_accepted_inputs_compute(
         "grid": {"points_per_axis": 11},
         "max_generations": 2,
         "population_size": 5,
+        "starts": 2,
     }
     if joint_limits is not None:
         raw["joint_limits_deg"] = joint_limits
     if lowest is not None:
         raw["link_bounds"] = [[lowest, total]] * 3
+    if tool is not None:
+        raw["l3"] = tool
     if box is not None:
         raw["base_box"] = [box[0], box[1], box[0], box[1]]
     bad = points_outside(task)
     if not MIN_LENGTH <= total <= MAX_LENGTH:
         bad.add("inputs.total_length_max")
+    elif tool is not None and not MIN_LENGTH <= tool <= MAX_LENGTH:
+        bad.add("inputs.l3")
+    elif tool is not None and lowest is not None:
+        bad |= {"inputs.l3", "inputs.link_bounds"}  # not both
     elif lowest is not None and (
         not MIN_LENGTH <= lowest <= MAX_LENGTH
         or 3 * lowest > total
         or total / lowest > MAX_LENGTH_RATIO
     ):
         bad.add("inputs.link_bounds")
+    elif lowest is None and not bad:
+        bad |= tool_outside(total, task, tool)
     if box is not None and (box[0] >= box[1] or any(abs(c) > MAX_COORDINATE for c in box)):
         bad.add("inputs.base_box")
     check_request(DESIGN, raw, bad, cost_limit=10**8)

@@ -1,13 +1,14 @@
 """The ``planar3r-design`` job: link lengths (and the base) chosen for a task under the
 joint limits it really has, against the paper's rule (eqs 10-11) under the same limits.
 
-The search is :mod:`.link_search` (differential evolution over the exact d_z, then
-Nelder-Mead); the figures and data files are :mod:`.optimum_artifacts`.
+The search is :mod:`.link_search` (independent starts of differential evolution over the
+exact d_z, each polished by Nelder-Mead; success only when two starts agree on the best
+score); the score is :mod:`.design_objective`; the figures and data files are
+:mod:`.optimum_artifacts`.
 """
 
 from __future__ import annotations
 
-import math
 from typing import Any
 
 import numpy as np
@@ -17,30 +18,25 @@ from worker.common.progress import ProgressReporter
 from worker.contract import JobContext, JobOutcome
 from worker.families.planar_serial import kinematics as planar_serial
 from worker.families.planar_serial.design_spec import DesignSpec
-from worker.families.planar_serial.jobs.dexterity_evaluation import FULL_DEXTERITY_TOL
-from worker.families.planar_serial.jobs.link_search import (
+from worker.families.planar_serial.jobs.design_objective import (
     Design,
     DesignObjective,
-    SearchOutcome,
     SearchSpace,
+)
+from worker.families.planar_serial.jobs.dexterity_evaluation import FULL_DEXTERITY_TOL
+from worker.families.planar_serial.jobs.link_search import (
+    AGREEMENT_TOL,
+    SearchOutcome,
+    StartOutcome,
     search,
 )
 from worker.families.planar_serial.jobs.optimum_artifacts import design_artifacts
 from worker.families.planar_serial.jobs.task_points import shortfall_notes
-from worker.families.planar_serial.jobs.trajectories import (
-    task_distance_range,
-    trajectory_samples,
-    trajectory_summary,
-)
+from worker.families.planar_serial.jobs.trajectories import trajectory_samples, trajectory_summary
 
-__all__ = ["STALL_FRACTION", "run_design"]
+__all__ = ["run_design"]
 
 FloatArray = NDArray[np.float64]
-
-#: The search counts as converged when the last quarter of its generations brought less
-#: than 1% of its whole gain in score (from the first generation's best to the last's).
-STALL_FRACTION = 0.25
-STALL_SHARE = 0.01
 
 
 def run_design(spec: DesignSpec, ctx: JobContext) -> JobOutcome:
@@ -53,7 +49,7 @@ def run_design(spec: DesignSpec, ctx: JobContext) -> JobOutcome:
     space = SearchSpace(np.asarray(spec.search_bounds), spec.total_length_max, spec.base_box)
     objective = DesignObjective(points, _limits_rad(spec), spec.objective, spec.dz_target, space)
     outcome = search(
-        objective, seed=spec.seed, population_size=spec.population_size,
+        objective, seed=spec.seed, starts=spec.starts, population_size=spec.population_size,
         generations=spec.max_generations, on_generation=progress.span(2.0, 85.0, "search"),
     )  # fmt: skip
     progress.report(85.0, "the paper's rule")
@@ -71,6 +67,8 @@ def run_design(spec: DesignSpec, ctx: JobContext) -> JobOutcome:
         "convergence": _convergence(spec, objective, outcome),
         "search_space": {
             "link_bounds": [list(pair) for pair in spec.search_bounds],
+            "l3_held": spec.held_l3,
+            "l3_chosen": _l3_chosen(spec),
             "total_length_max": spec.total_length_max,
             "base_box": None if spec.base_box is None else list(spec.base_box),
             "free_variables": spec.free_variables,
@@ -84,6 +82,12 @@ def run_design(spec: DesignSpec, ctx: JobContext) -> JobOutcome:
     artifacts = design_artifacts(spec, result, outcome, task_xy, path)
     progress.report(100.0, "done")
     return JobOutcome(result=result, artifacts=artifacts, notes=tuple(notes))
+
+
+def _l3_chosen(spec: DesignSpec) -> str:
+    if spec.link_bounds is not None:
+        return "designed within link_bounds" if spec.held_l3 is None else "link_bounds (lo = hi)"
+    return "l3" if spec.l3 is not None else "the paper rule's l3 for total_length_max"
 
 
 def _limits_rad(spec: DesignSpec) -> FloatArray | None:
@@ -117,11 +121,8 @@ def _design_entry(
 
 def _paper_rule(spec: DesignSpec, objective: DesignObjective) -> dict[str, Any] | None:
     """Eqs (10)-(11) from the task's distance range, base at the origin, same limits."""
-    distances = task_distance_range(spec.trajectory, spec.task_points)
-    d_min, d_max = distances.d_min, distances.d_max
-    if spec.round_distances:
-        d_min, d_max = float(math.floor(d_min)), float(math.ceil(d_max))
-    l3 = spec.paper_l3 if spec.paper_l3 is not None else (spec.total_length_max - d_max - 1) / 2
+    d_min, d_max = spec.rule_distances
+    l3 = spec.paper_l3 if spec.paper_l3 is not None else spec.budget_l3
     if l3 <= 0.0:
         return None
     links = planar_serial.synthesise_links(d_min, d_max, l3)
@@ -156,37 +157,73 @@ def _improvement(
 def _convergence(
     spec: DesignSpec, objective: DesignObjective, outcome: SearchOutcome
 ) -> dict[str, Any]:
-    scores = [entry["score"] for entry in outcome.history]
-    tail = max(1, math.ceil(STALL_FRACTION * len(scores)))
-    late_gain = scores[-tail - 1] - scores[-1] if len(scores) > tail else math.inf
-    stalled = late_gain <= STALL_SHARE * (scores[0] - scores[-1]) + 1e-12
+    kept, agreeing = outcome.kept, outcome.agreeing
     met = spec.objective == "max_min_dz" or objective.meets_target(outcome.best)
+    confirmed = len(agreeing) >= 2
+    quantity = "smallest d_z" if spec.objective == "max_min_dz" else "total length"
     if not met:
         message = (
             f"no design within the bounds keeps d_z >= {spec.dz_target:g} at every point: "
             f"the best found reaches {outcome.best.min_dz:.6f}"
         )
-    elif stalled:
+    elif confirmed:
         message = (
-            f"converged: the last {tail} generations brought less than "
-            f"{100 * STALL_SHARE:g}% of the search's gain"
+            f"confirmed: {len(agreeing)} of {spec.starts} independent starts reach the best "
+            f"score within {AGREEMENT_TOL:g}"
         )
+    elif spec.starts == 1:
+        message = "not confirmed: one start cannot be checked against another (starts >= 2)"
     else:
+        others = [s for s in sorted(outcome.starts, key=lambda s: s.score) if s is not kept]
+        reached = list(dict.fromkeys(f"{_objective_value(spec, s.best):.6g}" for s in others))
         message = (
-            f"the best design was still improving in the last {tail} generations (more "
-            f"than {100 * STALL_SHARE:g}% of the search's gain): more max_generations may "
-            "do better"
+            f"not confirmed: only start {kept.index} of {spec.starts} reaches the best "
+            f"{quantity}, {_objective_value(spec, kept.best):.6g}; "
+            f"{'the other start' if len(others) == 1 else 'the others'} stopped at "
+            + ", ".join(reached[:4])
+            + (", ..." if len(reached) > 4 else "")
+            + ": the best found may not be the optimum (more starts may tell)"
         )
     return {
-        "success": bool(met and stalled),
+        "success": bool(met and confirmed),
         "message": message,
         "seed": spec.seed,
+        "starts": [
+            _start_entry(spec, objective, start, start.index in agreeing)
+            for start in outcome.starts
+        ],
+        "kept_start": kept.index,
+        "agreeing_starts": len(agreeing),
+        "agreement_tol": AGREEMENT_TOL,
         "evaluations": outcome.evaluations,
-        "generations": outcome.global_stage["generations"],
-        "best_per_generation": outcome.history,
-        "global_search": outcome.global_stage,
-        "polish": outcome.polish,
+        "generations": kept.global_stage["generations"],
+        "best_per_generation": kept.history,
+        "global_search": kept.global_stage,
+        "polish": kept.polish,
     }
+
+
+def _objective_value(spec: DesignSpec, design: Design) -> float:
+    """What the objective drives: the smallest d_z, or the total length."""
+    return design.min_dz if spec.objective == "max_min_dz" else design.total_length
+
+
+def _start_entry(
+    spec: DesignSpec, objective: DesignObjective, start: StartOutcome, agrees: bool
+) -> dict[str, Any]:
+    return {
+        "start": start.index,
+        "seed": start.seed,
+        "score": start.score,
+        "min_dz": start.best.min_dz,
+        "total_length": start.best.total_length,
+        "meets_target": objective.meets_target(start.best)
+        if spec.objective == "min_length" else None,
+        "links": list(start.best.links),
+        "base": list(start.best.base),
+        "agrees_with_best": agrees,
+        "evaluations": start.evaluations,
+    }  # fmt: skip
 
 
 def _notes(spec: DesignSpec, result: dict[str, Any]) -> list[str]:

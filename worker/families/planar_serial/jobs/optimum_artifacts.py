@@ -3,9 +3,11 @@
 * ``design_maps`` (PNG, SVG): d_z maps of the paper's rule and of the optimum side by
   side, in the task's frame (each arm's base where it is), with the task points and the
   trajectory;
-* ``convergence`` (PNG, SVG): the best design per generation against the paper's rule;
+* ``convergence`` (PNG, SVG): the best design per generation of every start (the kept
+  one in front) against the paper's rule;
 * ``design_maps.npz``: both maps, the designs, the task points and trajectory samples;
-* ``convergence.csv``: one row per generation (smallest d_z, total length, score).
+* ``convergence.csv``: one row per start and generation (smallest d_z, total length,
+  score).
 """
 
 from __future__ import annotations
@@ -22,7 +24,8 @@ from worker.common.grids import WorkspaceGrid
 from worker.contract import Artifact
 from worker.families.planar_serial import kinematics as planar_serial
 from worker.families.planar_serial.design_spec import DesignSpec
-from worker.families.planar_serial.jobs.link_search import SearchOutcome, dexterity_at
+from worker.families.planar_serial.jobs.design_objective import dexterity_at
+from worker.families.planar_serial.jobs.link_search import SearchOutcome
 from worker.families.planar_serial.jobs.trajectories import trajectory_path
 from worker.families.planar_serial.plots import figures as plots
 from worker.families.planar_serial.plots.convergence import convergence_figure
@@ -65,7 +68,7 @@ def design_artifacts(
     }
     artifacts: tuple[Artifact, ...] = ()
     if spec.plots:
-        artifacts += _figures(spec, result, grid, maps, task_xy, limits is not None)
+        artifacts += _figures(spec, result, outcome, grid, maps, task_xy, limits is not None)
     artifacts += (
         _maps_npz(spec, result, grid, maps, task_xy, path_samples),
         _convergence_csv(spec, outcome),
@@ -76,6 +79,7 @@ def design_artifacts(
 def _figures(
     spec: DesignSpec,
     result: dict[str, Any],
+    outcome: SearchOutcome,
     grid: WorkspaceGrid,
     maps: dict[str, FloatArray],
     task_xy: FloatArray,
@@ -101,12 +105,15 @@ def _figures(
         if limited else "Link lengths designed for the task",
         length_unit=spec.length_unit,
     )  # fmt: skip
-    history = result["convergence"]["best_per_generation"]
     minimise_length = spec.objective == "min_length"
     key = "total_length" if minimise_length else "min_dz"
+    kept = outcome.kept
+    history = kept.history
     rule = result["paper_rule"]
     curve = convergence_figure(
         [entry[key] for entry in history],
+        other_starts=[[entry[key] for entry in start.history]
+                      for start in outcome.starts if start is not kept],
         optimum=result["optimum"][key],
         paper_rule=None if rule is None else rule[key],
         quantity=(f"total length $l_1 + l_2 + l_3$ [{spec.length_unit}]" if minimise_length
@@ -119,7 +126,7 @@ def _figures(
     )  # fmt: skip
     return (
         *figure_artifacts(maps_figure, "design_maps", "d_z of the paper's rule and the optimum"),
-        *figure_artifacts(curve, "convergence", "Best design per generation"),
+        *figure_artifacts(curve, "convergence", "Best design per generation of every start"),
     )
 
 
@@ -155,13 +162,14 @@ def _maps_npz(
 
 
 def _convergence_csv(spec: DesignSpec, outcome: SearchOutcome) -> Artifact:
-    history = outcome.history
+    rows = [(start.index, entry) for start in outcome.starts for entry in start.history]
     columns = {
+        column("start", DIMENSIONLESS): np.array([index for index, _ in rows], dtype=int),
         column("generation", DIMENSIONLESS): np.array(
-            [e["generation"] for e in history], dtype=int
+            [e["generation"] for _, e in rows], dtype=int
         ),
-        column("min_dz", DIMENSIONLESS): np.array([e["min_dz"] for e in history]),
-        column("total_length", spec.length_unit): np.array([e["total_length"] for e in history]),
-        column("score", DIMENSIONLESS): np.array([e["score"] for e in history]),
+        column("min_dz", DIMENSIONLESS): np.array([e["min_dz"] for _, e in rows]),
+        column("total_length", spec.length_unit): np.array([e["total_length"] for _, e in rows]),
+        column("score", DIMENSIONLESS): np.array([e["score"] for _, e in rows]),
     }
-    return columns_csv("convergence.csv", columns, "Best design per generation (CSV)")
+    return columns_csv("convergence.csv", columns, "Best design per start and generation (CSV)")

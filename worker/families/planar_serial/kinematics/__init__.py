@@ -30,6 +30,7 @@ from worker.families.planar_serial.kinematics.inputs import FloatArray as FloatA
 from worker.families.planar_serial.kinematics.inputs import Links as Links
 from worker.families.planar_serial.kinematics.inputs import (
     checked_array,
+    checked_link_rows,
     checked_links,
     checked_points,
 )
@@ -91,19 +92,22 @@ def reach_radii(links: ArrayLike) -> tuple[float, float]:
 def exact_orientation_dexterity(links: ArrayLike, points: ArrayLike) -> FloatArray:
     """Closed-form d_z with unlimited joints (docs/methods/planar-serial.md; eqs 3 and 5).
 
-    points: (..., 2) in the links' unit. Returns d_z (...) in [0, 1]:
+    links: (3,), or designs (..., 3) broadcast against the points' leading axes;
+    points: (..., 2) in the links' unit. Returns d_z in [0, 1], of the points' shape
+    (broadcast with the designs'):
     ``d_z = [acos(clip(c_lo)) - acos(clip(c_hi))] / pi`` with
     ``c_lo = (d^2 + l3^2 - (l1+l2)^2) / (2 d l3)``, ``c_hi = (d^2 + l3^2 - (l1-l2)^2) / (2 d l3)``,
     ``d = |p|``; at d = 0, d_z = 1 if |l1 - l2| <= l3 <= l1 + l2, else 0.
     """
-    l1, l2, l3 = checked_links(links, "exact_orientation_dexterity")
+    lengths = checked_link_rows(links, "exact_orientation_dexterity")
     p = checked_points(points, "exact_orientation_dexterity")
+    l1, l2, l3 = lengths[..., 0], lengths[..., 1], lengths[..., 2]
     # Scale-free form: lengths over the full reach, and clamping d at twice the reach
     # (d_z = 0 there anyway) keep every intermediate O(1).
     scale = l1 + l2 + l3
     a, b, c = l1 / scale, l2 / scale, l3 / scale
     d = np.minimum(np.hypot(p[..., 0], p[..., 1]) / scale, 2.0)
-    at_origin = 1.0 if abs(l1 - l2) <= l3 <= l1 + l2 else 0.0
+    at_origin = np.where((np.abs(l1 - l2) <= l3) & (l3 <= l1 + l2), 1.0, 0.0)
     safe_d = np.where(d > 0.0, d, 1.0)
     with np.errstate(divide="ignore", over="ignore"):
         c_lo = (d * d + c * c - (a + b) ** 2) / (2.0 * safe_d * c)

@@ -20,15 +20,20 @@ from worker.common.parameter_errors import bad_parameter
 __all__ = [
     "BoolArray",
     "FloatArray",
+    "LinkLengths",
     "Links",
     "checked_array",
     "checked_joint_limits",
+    "checked_link_rows",
     "checked_links",
     "checked_points",
     "sample_count",
 ]
 
 Links = tuple[float, float, float]
+#: Link lengths as three numbers, or as three columns (m,) that go with m points (one
+#: design per point: the batched-design paths of the exact d_z).
+LinkLengths = Links | tuple[FloatArray, FloatArray, FloatArray]
 
 
 def checked_links(links: ArrayLike, function: str) -> Links:
@@ -40,6 +45,17 @@ def checked_links(links: ArrayLike, function: str) -> Links:
         lambda a: a.shape == (3,) and bool(np.all(a > 0)),
     )
     return float(arr[0]), float(arr[1]), float(arr[2])
+
+
+def checked_link_rows(links: ArrayLike, function: str) -> FloatArray:
+    """Designs ``(..., 3)``: one (l1, l2, l3) per leading index, or one design (3,)."""
+    return checked_array(
+        links,
+        "links",
+        function,
+        "finite positive lengths (l1, l2, l3) of shape (3,) or (..., 3)",
+        lambda a: a.ndim >= 1 and a.shape[-1] == 3 and bool(np.all(a > 0)),
+    )
 
 
 def checked_points(points: ArrayLike, function: str) -> FloatArray:

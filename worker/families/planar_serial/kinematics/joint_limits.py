@@ -20,6 +20,7 @@ from worker.common.parameter_errors import bad_parameter
 from worker.families.planar_serial.kinematics.inputs import (
     BoolArray,
     FloatArray,
+    LinkLengths,
     Links,
     checked_joint_limits,
     checked_links,
@@ -129,7 +130,7 @@ def _feasible(linear: FloatArray, limits: FloatArray) -> BoolArray:
 
 
 def _pair_quantities(
-    links: Links, limits: FloatArray, px: FloatArray, py: FloatArray, phi: FloatArray
+    links: LinkLengths, limits: FloatArray, px: FloatArray, py: FloatArray, phi: FloatArray
 ) -> FloatArray:
     """(7, k) quantities of :func:`_linear_weights` at k (point, orientation) pairs.
 
@@ -162,11 +163,12 @@ def _pair_quantities(
 
 
 def feasible_orientations(
-    links: Links, limits: FloatArray, px: FloatArray, py: FloatArray, phi: FloatArray
+    links: LinkLengths, limits: FloatArray, px: FloatArray, py: FloatArray, phi: FloatArray
 ) -> BoolArray:
     """Feasibility of (point, orientation) pairs: px, py, phi (k,) -> (k,) bool.
 
-    links and limits already checked. A pair is feasible when an elbow branch has all
+    links (three numbers, or three (k,) columns, one design per pair) and limits
+    already checked. A pair is feasible when an elbow branch has all
     three joints within their limits (the test of :func:`limited_orientation_dexterity`).
     """
     return _feasible(_pair_quantities(links, limits, px, py, phi), limits)

@@ -32,14 +32,15 @@ import numbers
 from collections.abc import Callable
 
 import numpy as np
-from numpy.typing import ArrayLike
+from numpy.typing import ArrayLike, NDArray
 
 from worker.common.parameter_errors import bad_parameter
 from worker.families.planar_serial.kinematics.inputs import (
     BoolArray,
     FloatArray,
-    Links,
+    LinkLengths,
     checked_joint_limits,
+    checked_link_rows,
     checked_links,
     checked_points,
 )
@@ -90,11 +91,12 @@ def _roots(ax: FloatArray, ay: FloatArray, k: FloatArray) -> tuple[FloatArray, F
 
 
 def orientation_events(
-    links: Links, limits: FloatArray, px: FloatArray, py: FloatArray
+    links: LinkLengths, limits: FloatArray, px: FloatArray, py: FloatArray
 ) -> FloatArray:
     """Event orientations (m, event_count) in rad, NaN where a condition has no root.
 
-    links and limits checked; px, py: (m,) coordinates.  Column order: annulus edges,
+    links (three numbers, or three (m,) columns, one design per point) and limits
+    checked; px, py: (m,) coordinates.  Column order: annulus edges,
     th2 limits, th1 limits, th3 limits, two roots each.
     """
     l1, l2, l3 = links
@@ -138,14 +140,23 @@ def _sub_arcs(events: FloatArray) -> tuple[FloatArray, FloatArray]:
     return starts, lengths
 
 
-def _chunk_measure(links: Links, limits: FloatArray, flat: FloatArray) -> FloatArray:
-    """Feasible measure (rad) at each of the (m, 2) points."""
+def _at_rows(links: LinkLengths, rows: NDArray[np.intp]) -> LinkLengths:
+    """The links of the chosen rows: three numbers stay, three columns are indexed."""
+    l1, l2, l3 = links
+    if isinstance(l1, np.ndarray):
+        return l1[rows], np.asarray(l2)[rows], np.asarray(l3)[rows]
+    return links
+
+
+def _chunk_measure(links: LinkLengths, limits: FloatArray, flat: FloatArray) -> FloatArray:
+    """Feasible measure (rad) at each of the (m, 2) points (links: one design, or one
+    per point as three (m,) columns)."""
     px, py = flat[:, 0], flat[:, 1]
     starts, lengths = _sub_arcs(orientation_events(links, limits, px, py))
     rows, cols = np.nonzero(lengths > 0.0)
     length = lengths[rows, cols]
     middle = starts[rows, cols] + 0.5 * length
-    feasible = feasible_orientations(links, limits, px[rows], py[rows], middle)
+    feasible = feasible_orientations(_at_rows(links, rows), limits, px[rows], py[rows], middle)
     measure = np.bincount(rows[feasible], weights=length[feasible], minlength=len(px))
     return np.asarray(measure, dtype=np.float64)
 
@@ -160,27 +171,33 @@ def exact_limited_orientation_dexterity(
 ) -> FloatArray:
     """Exact d_z with joint limits, from the closed-form events (module docstring).
 
-    links: (3,); points: (..., 2); joint_limits: (3, 2) rad ``[[lo, hi], ...]`` with
-    -pi <= lo <= hi <= pi, joint angles wrapped to (-pi, pi]. Returns d_z (...) in
-    [0, 1], the measure of the feasible orientations over 2 pi.
+    links: (3,), or designs (..., 3) broadcast against the points' leading axes (the
+    design search evaluates a population at once); points: (..., 2); joint_limits:
+    (3, 2) rad ``[[lo, hi], ...]`` with -pi <= lo <= hi <= pi, joint angles wrapped to
+    (-pi, pi]. Returns d_z in [0, 1], of the points' shape (broadcast with the
+    designs'): the measure of the feasible orientations over 2 pi.
 
     Points beyond the reach l1 + l2 + l3 or inside the unreachable disk get 0 without
     work; the others are processed ``chunk_points`` at a time (peak memory about
     ``chunk_points`` x 21 sub-arcs x 100 bytes), ``on_chunk(done, total)`` after each.
     """
     function = "exact_limited_orientation_dexterity"
-    lengths = checked_links(links, function)
+    lengths = checked_link_rows(links, function)
     p = checked_points(points, function)
     limits = checked_joint_limits(joint_limits, function)
     if not (isinstance(chunk_points, numbers.Integral) and chunk_points >= 1):
         raise bad_parameter("chunk_points", function, "a positive integer", chunk_points)
-    flat = p.reshape(-1, 2)
-    total = flat.shape[0]
-    l1, l2, l3 = lengths
-    outer = l1 + l2 + l3
-    inner = max(0.0, 2.0 * max(lengths) - outer)
+    shape = np.broadcast_shapes(lengths.shape[:-1], p.shape[:-1])
+    flat = np.broadcast_to(p, (*shape, 2)).reshape(-1, 2)
+    # one design: three numbers; designs: one row of links per point
+    rows = None if lengths.ndim == 1 else np.broadcast_to(lengths, (*shape, 3)).reshape(-1, 3)
+    one_design = checked_links(lengths, function) if rows is None else None
+    per_point = lengths if rows is None else rows
+    outer = per_point.sum(axis=-1)
+    inner = np.maximum(0.0, 2.0 * per_point.max(axis=-1) - outer)
     distance = np.hypot(flat[:, 0], flat[:, 1])
     candidates = np.flatnonzero((distance <= outer) & (distance >= inner))
+    total = flat.shape[0]
     dz = np.zeros(total, dtype=np.float64)
     step = int(chunk_points)
     for start in range(0, max(total, 1), step):
@@ -188,11 +205,16 @@ def exact_limited_orientation_dexterity(
         lo, hi = np.searchsorted(candidates, [start, stop])
         chosen = candidates[lo:hi]
         if chosen.size:
-            measure = _chunk_measure(lengths, limits, flat[chosen])
+            chosen_links: LinkLengths = (
+                one_design
+                if one_design is not None
+                else (rows[chosen, 0], rows[chosen, 1], rows[chosen, 2])
+            )
+            measure = _chunk_measure(chosen_links, limits, flat[chosen])
             dz[chosen] = np.clip(measure / TWO_PI, 0.0, 1.0)
         if on_chunk is not None:
             on_chunk(stop, total)
-    return dz.reshape(p.shape[:-1])
+    return dz.reshape(shape)
 
 
 def feasible_arcs(

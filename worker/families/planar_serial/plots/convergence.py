@@ -1,8 +1,9 @@
-"""The convergence curve of ``planar3r-design``: the best design, generation by generation.
+"""The convergence curves of ``planar3r-design``: the best design, generation by generation.
 
 One panel: the quantity the objective drives (the smallest d_z, or the total length) of
-the best design after each generation of the global search, the polished optimum after
-the last, and the paper's rule as a horizontal reference.  Conventions as in
+the best design after each generation of the kept start of the global search, the other
+starts' curves faintly behind it (where they end shows whether they agree), the
+polished optimum after the last, and the paper's rule as a horizontal reference.  Conventions as in
 :mod:`worker.families.planar_serial.plots.figures`.
 """
 
@@ -20,6 +21,7 @@ from worker.common.figures import bad_figure_argument, plain_text
 __all__ = ["convergence_figure"]
 
 _CURVE = "#2c5d8a"
+_OTHER = "#9db3c8"
 _RULE = "#e8373f"
 _OPTIMUM = "#1a1a1a"
 
@@ -33,13 +35,15 @@ def convergence_figure(
     title: str,
     met: Sequence[bool] | None = None,
     paper_rule_note: str = "",
+    other_starts: ArrayLike | None = None,
 ) -> Figure:
     """The best ``quantity`` (mathtext allowed, with its unit) per generation (g,).
 
     ``optimum``: the value after polishing, marked after the last generation;
     ``paper_rule``: the rule's value, a dashed line (None: not drawn); ``met`` (g,):
     whether each generation's best meets the target (``min_length``): hollow markers
-    where it does not; ``paper_rule_note`` is appended to the rule's legend entry.
+    where it does not; ``paper_rule_note`` is appended to the rule's legend entry;
+    ``other_starts`` (s, g): the other starts' curves, drawn faintly behind.
     """
     where = "convergence_figure"
     curve = np.asarray(values, dtype=float)
@@ -48,9 +52,16 @@ def convergence_figure(
                                   f"shape {curve.shape}")  # fmt: skip
     if met is not None and len(met) != curve.size:
         raise bad_figure_argument("met", where, f"{curve.size} flags", f"{len(met)} flags")
+    others = np.empty((0, curve.size)) if other_starts is None else np.asarray(other_starts, float)
+    if others.ndim != 2 or others.shape[1] != curve.size or not np.isfinite(others).all():
+        raise bad_figure_argument("other_starts", where, f"a finite array (s, {curve.size})",
+                                  f"shape {others.shape}")  # fmt: skip
     generations = np.arange(1, curve.size + 1)
     fig = Figure(figsize=(7.0, 4.4), layout="constrained")
     ax = fig.add_subplot()
+    for index, other in enumerate(others):
+        ax.plot(generations, other, color=_OTHER, lw=1.0,
+                label=f"other starts ({len(others)})" if index == 0 else None)  # fmt: skip
     ax.plot(generations, curve, color=_CURVE, lw=1.8, label="best design after each generation")
     if met is not None and not all(met):
         missed = ~np.asarray(met, dtype=bool)

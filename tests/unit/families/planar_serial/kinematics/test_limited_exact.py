@@ -202,6 +202,42 @@ def test_batch_shape_and_chunking_change_nothing() -> None:
     assert calls == [(6, 20), (12, 20), (18, 20), (20, 20)]
 
 
+@PROPERTY
+@given(
+    st.lists(designs, min_size=1, max_size=4),
+    st.lists(st.tuples(st.floats(-8, 8), st.floats(-8, 8)), min_size=1, max_size=5),
+    limits(),
+)
+def test_designs_at_once_equal_one_at_a_time(
+    many: list[tuple[float, float, float]], where: list[tuple[float, float]], lims: np.ndarray
+) -> None:
+    # the design search evaluates a population in one call: links (s, 1, 3) against
+    # points (n, 2) must give what each design gives alone (the same arithmetic)
+    rows = np.asarray(many)[:, np.newaxis, :]
+    together = exact_limited_orientation_dexterity(rows, where, lims)
+    alone = np.stack([exact_limited_orientation_dexterity(one, where, lims) for one in many])
+    assert together.shape == (len(many), len(where))
+    np.testing.assert_allclose(together, alone, rtol=0.0, atol=1e-12)
+    unlimited = exact_orientation_dexterity(rows, where)
+    np.testing.assert_allclose(
+        unlimited, np.stack([exact_orientation_dexterity(one, where) for one in many]),
+        rtol=0.0, atol=1e-12,
+    )  # fmt: skip
+
+
+def test_designs_broadcast_and_chunk_like_points() -> None:
+    rng = np.random.default_rng(3)
+    links = rng.uniform(2.0, 15.0, (3, 1, 3))
+    grid = rng.uniform(-30, 30, (4, 2))
+    whole = exact_limited_orientation_dexterity(links, grid, PAPER_LIMITS)
+    chunked = exact_limited_orientation_dexterity(links, grid, PAPER_LIMITS, chunk_points=5)
+    assert whole.shape == (3, 4)
+    np.testing.assert_array_equal(whole, chunked)
+    # one design per point: the diagonal of the all-pairs table
+    paired = exact_limited_orientation_dexterity(links[:, 0, :], grid[:3], PAPER_LIMITS)
+    np.testing.assert_array_equal(paired, np.diagonal(whole[:, :3]))
+
+
 def test_event_count() -> None:
     assert event_count(PAPER_LIMITS) == 16
     assert event_count(FREE) == 4
@@ -213,6 +249,8 @@ def test_event_count() -> None:
     ("kwargs", "parameter"),
     [
         ({"links": (1, -1, 1)}, "links"),
+        ({"links": [[1, 1, 1], [1, 0, 1]]}, "links"),
+        ({"links": [[1, 1]]}, "links"),
         ({"points": [[np.nan, 0]]}, "points"),
         ({"joint_limits": [[1, 0]] * 3}, "joint_limits"),
         ({"chunk_points": 0}, "chunk_points"),
