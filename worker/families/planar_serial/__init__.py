@@ -185,7 +185,6 @@ SYNTHESIS = ProcessDefinition(
 
 DESIGN = ProcessDefinition(
     id="planar3r-design",
-    version="1.1.0",  # design_maps: lengths to 4 digits, with their unit
     result_paths=DESIGN_RESULT_PATHS,
     title="Three-link planar arm: link lengths designed for the task under joint limits",
     method_doc="planar-serial",
