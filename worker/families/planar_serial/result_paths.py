@@ -183,6 +183,20 @@ DESIGN_RESULT_PATHS = (
       "The best design's total length."),
     R("convergence.best_per_generation[].score", "-", "", "What the search minimises "
       "(docs/methods/planar-serial.md)."),
+    R("convergence.kept_start", "-", "", "The start whose best design is reported."),
+    R("convergence.agreeing_starts", "-", "", "Starts whose best score is within "
+      "agreement_tol of the best (success needs two)."),
+    R("convergence.agreement_tol", "-", "", "Scores closer than this agree (score units: "
+      "d_z for 'max_min_dz', a share of total_length_max for 'min_length')."),
+    R("convergence.starts[].start", "-", "", "The start's index."),
+    R("convergence.starts[].seed", "-", "", "The start's own seed (spawned from seed)."),
+    R("convergence.starts[].score", "-", "", "Its best score."),
+    R("convergence.starts[].min_dz", "-", r"$\min\,d_z$", "Its best design's least d_z."),
+    R("convergence.starts[].total_length", "length", "$l_1 + l_2 + l_3$",
+      "Its best design's total length."),
+    R("convergence.starts[].links[]", "length", "$l_i$", "Its best design's links."),
+    R("convergence.starts[].base[]", "length", "", "Its best design's base [x, y]."),
+    R("convergence.starts[].evaluations", "-", "", "Designs it evaluated."),
     R("convergence.global_search.generations", "-", "", "Generations run."),
     R("convergence.global_search.population", "-", "", "Designs per generation."),
     R("convergence.global_search.evaluations", "-", "", "Designs evaluated."),
@@ -193,6 +207,8 @@ DESIGN_RESULT_PATHS = (
     R("search_space.total_length_max", "length", "", "Longest total length allowed."),
     R("search_space.base_box[]", "length", "", "Where the base may go, [x_min, x_max, "
       "y_min, y_max] (null: at the origin)."),
+    R("search_space.l3_held", "length", "$l_3$", "The tool link's held length (null "
+      "when link_bounds designs it)."),
     R("search_space.free_variables", "-", "", "Variables searched over."),
     R("evaluation_points.task_points", "-", "", "Task points in the objective."),
     R("evaluation_points.trajectory_samples", "-", "", "Trajectory samples in the objective."),
