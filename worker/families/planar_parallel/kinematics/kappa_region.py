@@ -69,14 +69,14 @@ class KappaRegion:
     limit). x (C,): column abscissae, increasing (``base_columns`` evenly spaced over
     |x| <= X, the rest added where W_kappa0 is thin or ends); lower, upper (C,): the ends
     of each column's lowest run (NaN where the column has none), exact to ~1e-12.
-    boundary: one closed polyline (k, 2) per group of consecutive columns with runs:
-    the lower ends left to right, then the upper ends right to left, first point
-    repeated. whole_area: all of W_kappa0 (every run of every column);
-    rectangle_region_area: the lowest runs only (the part the paper's rectangle lives
-    in, outlined by ``boundary``); both by the trapezoid rule over the columns, to about
-    1e-3 of the area. largest_inverse_condition and largest_point: the largest 1/kappa
-    found (NaN if nothing is searched); at a corner of the reach it is the limit as the
-    point approaches the corner.
+    boundary: one closed polyline (k, 2) per piece of the lowest runs (consecutive
+    columns whose lowest runs overlap): the lower ends left to right, then the upper
+    ends right to left, first point repeated. whole_area: all of W_kappa0 (every run of
+    every column); rectangle_region_area: the lowest runs only (the part the paper's
+    rectangle lives in, outlined by ``boundary``); both by the trapezoid rule over the
+    columns, to about 1e-3 of the area. largest_inverse_condition and largest_point:
+    the largest 1/kappa found (NaN if nothing is searched); at a corner of the reach it
+    is the limit as the point approaches the corner.
     """
 
     found: bool
@@ -105,11 +105,16 @@ def _positive_int(value: object, name: str, function: str, minimum: int) -> int:
     return int(value)
 
 
-def _groups(found: np.ndarray) -> list[tuple[int, int]]:
-    """(start, stop) index ranges of consecutive True values."""
-    padded = np.concatenate([[False], found, [False]]).astype(np.int8)
-    edges = np.flatnonzero(np.diff(padded))
-    return [(int(edges[k]), int(edges[k + 1])) for k in range(0, edges.size, 2)]
+def _groups(lower: FloatArray, upper: FloatArray) -> list[tuple[int, int]]:
+    """(start, stop) index ranges of consecutive columns whose lowest runs overlap (a
+    piece of the lowest runs: it ends where a column has none, or where the lowest run
+    jumps to another piece)."""
+    with np.errstate(invalid="ignore"):
+        joined = (lower[1:] <= upper[:-1]) & (lower[:-1] <= upper[1:])  # False with NaN
+    found = np.isfinite(lower)
+    starts = np.flatnonzero(found & ~np.concatenate([[False], joined]))
+    stops = np.flatnonzero(found & ~np.concatenate([joined, [False]])) + 1
+    return [(int(a), int(b)) for a, b in zip(starts, stops, strict=True)]
 
 
 def _trapezoid(x: FloatArray, values: FloatArray) -> float:
@@ -272,7 +277,7 @@ def _region(
     lower, upper = runs.lowest()
     xs = runs.x
     polygons = []
-    for start, stop in _groups(np.isfinite(lower)):
+    for start, stop in _groups(lower, upper):
         x, lo, up = xs[start:stop], lower[start:stop], upper[start:stop]
         ring = np.concatenate([np.stack([x, lo], -1), np.stack([x[::-1], up[::-1]], -1)])
         polygons.append(np.concatenate([ring, ring[:1]]))
