@@ -1,7 +1,7 @@
 """Benchmark the 2-DOF planar parallel kernels against straightforward per-point code.
 
     python bench/planar2dof_conditioning.py [--points-per-axis 1001] [--subset 4000]
-                                            [--naive-deltas 1.7 2.2]
+                                            [--naive-deltas 1.7 2.2] [--region-grid 2001]
 
 Everything printed is measured in this run:
 
@@ -18,6 +18,11 @@ Everything printed is measured in this run:
    101 x 101 mesh point by point. Sampling the boundary misses the tangency between
    samples, so that rectangle pokes slightly out of W_kappa0; both are checked densely.
 
+3. kappa_region_boundary (W_kappa0 with the job's 801 columns and 321 rows, every run of
+   every column, columns added where it is thin or ends) on the designs of the worked
+   examples of planar2dof-conditioning-map and on a thin set (two wedges of 1.5e-4 at
+   corners of the reach), vs counting the nodes of a square grid over the same box.
+
 The per-point loops over everything would take minutes to hours, so the map reference is
 timed on a random subset of grid points and the straightforward sweep on a few deltas,
 each scaled linearly; the printout says so.
@@ -30,15 +35,20 @@ import inspect
 import math
 import os
 import time
+from functools import partial
 
 import numpy as np
 from timing import best_time
 
 from worker.families.planar_parallel.discretisation import (
+    BOUNDARY_COLUMNS,
+    BOUNDARY_ROWS,
     RECTANGLE_BOUNDARY_SAMPLES,
     RECTANGLE_COLUMNS,
     RECTANGLE_ROWS,
 )
+from worker.families.planar_parallel.examples import CONDITIONING_MAP_EXAMPLES
+from worker.families.planar_parallel.jobs.architecture import architecture_from_spec
 from worker.families.planar_parallel.kinematics import (
     Architecture,
     conditioning_map,
@@ -46,8 +56,12 @@ from worker.families.planar_parallel.kinematics import (
     inverse_condition,
     isotropic_architecture,
     isotropic_point,
+    kappa_region_boundary,
     sampled_inverse_condition,
+    workspace_area,
 )
+from worker.families.planar_parallel.kinematics.columns import search_box
+from worker.families.planar_parallel.specs import ConditioningMapSpec
 
 LIMIT = 0.526
 ASPECT = 4.0
@@ -191,11 +205,51 @@ def dense_boundary_minimum(arch: Architecture, h: float, centre: float) -> float
     return float(min(np.min(inverse_condition(arch, np.stack(e, -1))) for e in edges))
 
 
+def region_cases() -> list[tuple[str, Architecture, tuple[int, int], float]]:
+    """(label, design, working mode, limit): the worked examples with a limit, and a thin
+    set."""
+    cases: list[tuple[str, Architecture, tuple[int, int], float]] = []
+    for example in CONDITIONING_MAP_EXAMPLES:
+        spec = ConditioningMapSpec.model_validate(dict(example.inputs))
+        limit = spec.inverse_condition_limit
+        if limit is not None:
+            label = f"{spec.actuation}, l2 = {spec.l2:g}, 1/kappa0 = {limit:g}"
+            cases.append((label, architecture_from_spec(spec), spec.working_mode, limit))
+    thin = Architecture("proximal-arm", 2.229, 4.8702, 1.2718)
+    cases.append(("thin: l1 2.229, l2 4.8702, e 1.2718, (-1, -1), 0.543", thin, (-1, -1), 0.543))
+    return cases
+
+
+def node_count(
+    arch: Architecture, mode: tuple[int, int], limit: float, x: np.ndarray, y: np.ndarray
+) -> float:
+    """The area of W_kappa0 by counting grid nodes."""
+    values = np.nan_to_num(conditioning_map(arch, x, y, mode).inverse_condition, nan=-1.0)
+    return workspace_area(values >= limit, x, y)
+
+
+def compare_region(grid_points: int) -> None:
+    print(f"\n[3] W_kappa0 ({BOUNDARY_COLUMNS} columns x {BOUNDARY_ROWS} rows, columns added "
+          f"where thin or ending) vs a {grid_points} x {grid_points} node count")  # fmt: skip
+    for label, arch, mode, limit in region_cases():
+        region = kappa_region_boundary(arch, limit, mode)
+        ours = best_time(partial(kappa_region_boundary, arch, limit, mode), 3)
+        span, low, high = search_box(arch, limit)
+        x, y = np.linspace(-span, span, grid_points), np.linspace(low, high, grid_points)
+        grid_area = node_count(arch, mode, limit, x, y)
+        grid_time = best_time(partial(node_count, arch, mode, limit, x, y), 1)
+        print(f"  {label}:\n    kappa_region_boundary {ours * 1e3:7.1f} ms, area "
+              f"{region.whole_area:.6g} (rectangle_region_area "
+              f"{region.rectangle_region_area:.6g}), {region.added_columns} columns added; "
+              f"node count {grid_time * 1e3:7.1f} ms, area {grid_area:.6g}")  # fmt: skip
+
+
 def main(argv: list[str] | None = None) -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--points-per-axis", type=int, default=1001)
     parser.add_argument("--subset", type=int, default=4000)
     parser.add_argument("--naive-deltas", type=float, nargs="+", default=[1.7, 2.2])
+    parser.add_argument("--region-grid", type=int, default=2001)
     args = parser.parse_args(argv)
     threads = {name: os.environ.get(name, "unset") for name in ("OPENBLAS_NUM_THREADS",
                                                                 "OMP_NUM_THREADS")}  # fmt: skip
@@ -203,6 +257,7 @@ def main(argv: list[str] | None = None) -> None:
     print("  (the kernels are elementwise numpy: single-threaded, no BLAS)")
     compare_map(args.points_per_axis, args.subset, np.random.default_rng(2004))
     compare_sweep(args.naive_deltas)
+    compare_region(args.region_grid)
 
 
 if __name__ == "__main__":

@@ -53,7 +53,10 @@ def _run_optimisation(spec: OptimisationSpec, ctx: JobContext) -> JobOutcome:
 
 CONDITIONING_MAP = ProcessDefinition(
     id="planar2dof-conditioning-map",
-    version="1.1.0",  # figures: a contour label only where it sits on its line
+    # 1.1: figures: a contour label only where it sits on its line.
+    # 1.2: W_kappa0 found and measured at any size (thin sets, sets between columns);
+    # largest_inverse_condition and below_resolution added.
+    version="1.2.0",
     result_paths=CONDITIONING_MAP_RESULT_PATHS,
     title="2-DOF planar parallel robot: conditioning map",
     method_doc="planar-parallel",
@@ -92,9 +95,14 @@ CONDITIONING_MAP = ProcessDefinition(
         "exists, else the best point on x = 0 below the base; null if 1/kappa is 0 there.",
         "summary": "Reachable node count and grid area; min/max/mean of 1/kappa and of "
         "beta_min (deg) over reachable nodes.",
-        "w_kappa0": "With a limit: inverse_condition_limit, found, area (column-wise, "
-        "exact), area_grid, undescribed_area_grid, boundary (closed polylines [[x, y], "
-        "...]) and message; else null.",
+        "w_kappa0": "With a limit: inverse_condition_limit; found (W_kappa0 is not empty: "
+        "the largest 1/kappa exceeds the limit); area (all of W_kappa0) and "
+        "rectangle_region_area (the lowest run of each column, where the paper's rectangle "
+        "lives), column-wise, good to 1 % for a set of at least 1e-4 of the reachable area "
+        "on the grid; area_grid; undescribed_area_grid; largest_inverse_condition (value, "
+        "x, y; null if nothing was searched); below_resolution (the set is smaller than "
+        "that); boundary (closed polylines [[x, y], ...] around the lowest runs) and "
+        "message; else null.",
         "points": "Per given point, in order: x, y, reachable, inverse_condition, "
         "pressure_angles_deg, min_pressure_angle_deg, joint_angles_deg (proximal arm), "
         "joint_displacements (leg lengths or slider positions).",

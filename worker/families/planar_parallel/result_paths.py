@@ -38,9 +38,14 @@ CONDITIONING_MAP_RESULT_PATHS = (
     *_stats("min_pressure_angle_deg", "deg", _BETA_MIN, "beta_min (eq 15)"),
     R("w_kappa0.inverse_condition_limit", "-", r"$1/\kappa_0$", "The limit 1/kappa0."),
     R("w_kappa0.area", "length^2", "", "Area of W_kappa0 = {1/kappa >= 1/kappa0} "
-      "(column-wise, exact)."),
+      "(column-wise; good to 1 % unless below_resolution)."),
     R("w_kappa0.rectangle_region_area", "length^2", "", "Area of the part of W_kappa0 a "
       "rectangle can use (each column's lowest run)."),
+    R("w_kappa0.largest_inverse_condition.value", "-", r"$\max\,1/\kappa$",
+      "The largest 1/kappa (at a corner of the reach: its limit there); W_kappa0 is found "
+      "iff it exceeds 1/kappa0."),
+    R("w_kappa0.largest_inverse_condition.x", "length", "$x$", "Where it is: x."),
+    R("w_kappa0.largest_inverse_condition.y", "length", "$y$", "Its y."),
     R("w_kappa0.area_grid", "length^2", "", "Area of W_kappa0 counted on the grid."),
     R("w_kappa0.undescribed_area_grid", "length^2", "", "Grid area of W_kappa0 outside the "
       "boundary described."),
@@ -58,6 +63,8 @@ CONDITIONING_MAP_RESULT_PATHS = (
     R("discretisation.grid.points_per_axis", "-", "", "Grid nodes per axis."),
     R("discretisation.grid.step[]", "length", "", "Grid spacing [dx, dy]."),
     R("discretisation.w_kappa0.columns", "-", "", "Columns of the W_kappa0 search."),
+    R("discretisation.w_kappa0.columns_added", "-", "", "Columns the W_kappa0 search added "
+      "where the set is thin or ends."),
     R("discretisation.w_kappa0.rows", "-", "", "Rows of the W_kappa0 search."),
     R("discretisation.w_kappa0.x_half_span", "length", "", "Half-width in x of the search."),
 )  # fmt: skip

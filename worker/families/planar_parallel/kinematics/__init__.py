@@ -18,9 +18,9 @@ is unreachable in the working mode.
 The isotropic design (eq 12) and point are in
 :mod:`.isotropic`, the conditioning limit from an
 allowable pressure angle (eqs 15-17) in
-:mod:`.pressure`, W_kappa0 and W_lambda in
-:mod:`.workspace` (column search:
-``planar_parallel_columns``, rectangle: ``planar_parallel_rectangle``), the delta sweep in
+:mod:`.pressure`, W_kappa0 and W_lambda in :mod:`.kappa_region` and
+:mod:`.workspace` (column search: :mod:`.columns`, :mod:`.column_runs`,
+:mod:`.maxima`; rectangle: :mod:`.rectangle`), the delta sweep in
 :mod:`.sweep` and the per-point SVD reference in
 :mod:`.reference`; their public names are re-exported
 here, so this module is the one to import.
@@ -42,6 +42,10 @@ from worker.families.planar_parallel.kinematics.isotropic import (
     isotropic_architecture as isotropic_architecture,
 )
 from worker.families.planar_parallel.kinematics.isotropic import isotropic_point as isotropic_point
+from worker.families.planar_parallel.kinematics.kappa_region import KappaRegion as KappaRegion
+from worker.families.planar_parallel.kinematics.kappa_region import (
+    kappa_region_boundary as kappa_region_boundary,
+)
 from worker.families.planar_parallel.kinematics.model import Actuation as Actuation
 from worker.families.planar_parallel.kinematics.model import Architecture as Architecture
 from worker.families.planar_parallel.kinematics.model import (
@@ -71,11 +75,7 @@ from worker.families.planar_parallel.kinematics.reference import (
 from worker.families.planar_parallel.kinematics.sweep import DesignSweep as DesignSweep
 from worker.families.planar_parallel.kinematics.sweep import SweepRow as SweepRow
 from worker.families.planar_parallel.kinematics.sweep import design_sweep as design_sweep
-from worker.families.planar_parallel.kinematics.workspace import KappaRegion as KappaRegion
 from worker.families.planar_parallel.kinematics.workspace import Rectangle as Rectangle
-from worker.families.planar_parallel.kinematics.workspace import (
-    kappa_region_boundary as kappa_region_boundary,
-)
 from worker.families.planar_parallel.kinematics.workspace import (
     largest_rectangle as largest_rectangle,
 )

@@ -9,9 +9,11 @@ heights, the lowest run of feasible samples is kept, and its two ends are refine
 ~1e-12 by the Illinois (modified regula falsi) method on ``1/kappa - limit``, with
 1/kappa extended by 0 outside the reachable set (1/kappa -> 0 at the reach boundary, so
 the extension is continuous). Runs thinner than a row spacing can be missed; runs above
-a gap in the same column (overhangs) are not part of the description.
+a gap in the same column (overhangs) are not part of the description. That is the
+rectangle search's description (:mod:`.rectangle`); W_kappa0 itself, every run of
+every column with thin runs found, is :mod:`.kappa_region`'s (:mod:`.column_runs`).
 
-Internal to :mod:`.workspace` and
+Internal to :mod:`.workspace`, :mod:`.kappa_region` and
 :mod:`.sweep`; no input checks here.
 """
 
@@ -199,42 +201,6 @@ def bottom_runs(
     count = xs.shape[1]
     lower, upper = refined[:, :count], refined[:, count:]
     return np.where(found, lower, np.nan), np.where(found, upper, np.nan)
-
-
-def column_lengths(
-    batch: ArchitectureBatch,
-    xs: FloatArray,
-    y_low: FloatArray,
-    y_high: FloatArray,
-    rows: int,
-) -> FloatArray:
-    """The length of all of W_kappa0 in each column (every run, not only the lowest):
-    (B, C).
-
-    xs: (B, C) column abscissae; y_low, y_high: (B,) scan range; rows: samples per
-    column. Every change of sign between two scanned heights is refined (Illinois) and
-    the length is sum(exits) - sum(entries), a run open at a scan end counting from that
-    end. A run thinner than the row spacing between two scanned heights is missed.
-    """
-    ys = y_low[:, None] + (y_high - y_low)[:, None] * np.linspace(0.0, 1.0, rows)  # (B, R)
-    margins = batch.margin(xs[:, :, None], ys[:, None, :])  # (B, C, R)
-    feasible = margins >= 0.0
-    b, c, r = np.nonzero(feasible[..., 1:] != feasible[..., :-1])
-    entering = feasible[b, c, r + 1]
-    inside, outside = np.where(entering, r + 1, r), np.where(entering, r, r + 1)
-    crossings = ys[b, inside]
-    if b.size:
-        sub = subset(batch, b)
-        cols = xs[b, c][:, None]
-        crossings = illinois(
-            lambda y: sub.margin(cols, y[:, None])[:, 0],
-            ys[b, inside], ys[b, outside], margins[b, c, inside], margins[b, c, outside],
-        )  # fmt: skip
-    total = np.zeros(feasible.shape[:2])
-    np.add.at(total, (b, c), np.where(entering, -crossings, crossings))
-    total += np.where(feasible[..., -1], ys[:, -1:], 0.0)
-    total -= np.where(feasible[..., 0], ys[:, :1], 0.0)
-    return total
 
 
 def crossing_near(

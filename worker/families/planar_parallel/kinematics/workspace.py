@@ -1,11 +1,10 @@
-"""W_kappa0, its largest centred rectangle W_lambda and the mean 1/kappa over W_lambda
+"""The largest centred rectangle W_lambda inside W_kappa0 and the mean 1/kappa over it
 (Huang et al. 2004 §III-C; docs/methods/planar-parallel.md). Re-exported by
 :mod:`worker.families.planar_parallel.kinematics`; conventions as there.
 
-W_kappa0 = {reachable points of the working mode with 1/kappa >= limit}. It is found
-column by column (vertical 1-D root searches, the paper's "1-D root search",
-:mod:`.columns`) and described by the lowest run of
-each column; the rectangle search is in :mod:`.rectangle`.
+W_kappa0 = {reachable points of the working mode with 1/kappa >= limit} itself is in
+:mod:`.kappa_region`; the rectangle search (on the lowest run of each column,
+:mod:`.columns`) is in :mod:`.rectangle`.
 """
 
 from __future__ import annotations
@@ -17,15 +16,9 @@ from dataclasses import dataclass
 import numpy as np
 
 from worker.common.parameter_errors import bad_parameter
-from worker.families.planar_parallel.kinematics.columns import (
-    bottom_runs,
-    column_lengths,
-    search_box,
-    single,
-)
+from worker.families.planar_parallel.kinematics.columns import search_box, single
 from worker.families.planar_parallel.kinematics.model import (
     Architecture,
-    FloatArray,
     checked_limit,
     checked_mode,
     inverse_condition_kernel,
@@ -34,41 +27,12 @@ from worker.families.planar_parallel.kinematics.pressure import min_pressure_ang
 from worker.families.planar_parallel.kinematics.rectangle import RectangleArrays, solve_rectangles
 
 __all__ = [
-    "KappaRegion",
     "Rectangle",
-    "kappa_region_boundary",
     "largest_rectangle",
     "mean_inverse_condition",
     "rectangle_from_arrays",
     "rectangle_min_pressure_angle",
 ]
-
-
-@dataclass(frozen=True)
-class KappaRegion:
-    """W_kappa0 described column by column (the lowest run of each column).
-
-    found: any column has a run. x (C,): column abscissae; lower, upper (C,): the run's
-    ends (NaN where the column has none), exact to ~1e-12. boundary: one closed polyline
-    (k, 2) per group of consecutive columns with runs: the lower ends left to right, then
-    the upper ends right to left, first point repeated. area: the polygons' area (the
-    trapezoid rule over the columns); it misses up to about a column spacing times the
-    run length at each group's two ends and anything thinner than a row spacing or
-    above a gap in its column.
-    """
-
-    found: bool
-    limit: float
-    x: FloatArray
-    lower: FloatArray
-    upper: FloatArray
-    boundary: tuple[FloatArray, ...]
-    area: float
-    message: str
-    #: The area of all of W_kappa0 (every run of every column, not only the lowest), by
-    #: the trapezoid rule over the same columns; equal to ``area`` where no column has a
-    #: gap (the paper's isotropic designs).
-    whole_area: float = 0.0
 
 
 @dataclass(frozen=True)
@@ -103,65 +67,6 @@ def _positive_real(value: object, name: str, function: str, requirement: str) ->
             and math.isfinite(float(value)) and float(value) > 0):  # fmt: skip
         raise bad_parameter(name, function, requirement, value)
     return float(value)
-
-
-def _groups(found: np.ndarray) -> list[tuple[int, int]]:
-    """(start, stop) index ranges of consecutive True values."""
-    padded = np.concatenate([[False], found, [False]]).astype(np.int8)
-    edges = np.flatnonzero(np.diff(padded))
-    return [(int(edges[k]), int(edges[k + 1])) for k in range(0, edges.size, 2)]
-
-
-def kappa_region_boundary(
-    arch: Architecture,
-    limit: float,
-    working_mode: tuple[int, int] = (1, -1),
-    *,
-    columns: int = 801,
-    rows: int = 321,
-    x_half_span: float | None = None,
-) -> KappaRegion:
-    """W_kappa0 = {reachable, 1/kappa >= limit} by vertical 1-D root searches.
-
-    ``columns`` abscissae evenly over |x| <= X (X: the reach for the proximal arm, the
-    bounding circles for the telescopic leg, 2 l2 for the linear drive, whose W_kappa0 is
-    an unbounded band; ``x_half_span`` overrides it), each scanned at ``rows`` heights
-    and its lowest run refined to ~1e-12 (Illinois). See :class:`KappaRegion`.
-    """
-    function = "kappa_region_boundary"
-    value = checked_limit(limit, function)
-    mode = checked_mode(working_mode, function)
-    count = _positive_int(columns, "columns", function, 2)
-    scans = _positive_int(rows, "rows", function, 3)
-    if x_half_span is not None:
-        x_half_span = _positive_real(x_half_span, "x_half_span", function, "a positive length")
-    span, y_low, y_high = search_box(arch, value, x_half_span)
-    xs = np.linspace(-span, span, count) if span > 0 else np.zeros(count)
-    whole_area = 0.0
-    if span > 0:
-        batch = single(arch, mode, value)
-        scan = (batch, xs[None, :], np.array([y_low]), np.array([y_high]), scans)
-        lower, upper = (run[0] for run in bottom_runs(*scan))
-        lengths = column_lengths(*scan)[0]
-        whole_area = float(np.sum(0.5 * (lengths[1:] + lengths[:-1]) * np.diff(xs)))
-    else:
-        lower = upper = np.full(count, np.nan)
-    found = np.isfinite(lower)
-    polygons: list[FloatArray] = []
-    area = 0.0
-    for start, stop in _groups(found):
-        x, lo, up = xs[start:stop], lower[start:stop], upper[start:stop]
-        ring = np.concatenate([np.stack([x, lo], -1), np.stack([x[::-1], up[::-1]], -1)])
-        polygons.append(np.concatenate([ring, ring[:1]]))
-        area += float(np.sum(0.5 * ((up - lo)[1:] + (up - lo)[:-1]) * np.diff(x)))
-    message = (
-        f"W_kappa0 at 1/kappa >= {value:g}: {len(polygons)} polygon(s), area {area:.6g} "
-        f"({count} columns over |x| <= {span:.6g}, {scans} rows)"
-        if polygons else f"W_kappa0 at 1/kappa >= {value:g} is empty in |x| <= {span:.6g}"
-    )  # fmt: skip
-    return KappaRegion(
-        bool(polygons), value, xs, lower, upper, tuple(polygons), area, message, whole_area
-    )
 
 
 _STATUS = {
@@ -210,8 +115,9 @@ def largest_rectangle(
 
     ``columns`` abscissae over [0, X] (both signs unless the working mode is mirror-
     symmetric), ``rows`` scan heights each; the result is checked on
-    ``boundary_samples`` points per edge. X as in :func:`kappa_region_boundary`, except
-    the linear drive's default is ``aspect_ratio * l2``.
+    ``boundary_samples`` points per edge. X as in
+    :func:`.kappa_region.kappa_region_boundary`, except the linear drive's default is
+    ``aspect_ratio * l2``.
     """
     function = "largest_rectangle"
     value = checked_limit(limit, function)

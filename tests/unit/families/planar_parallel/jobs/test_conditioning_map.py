@@ -222,6 +222,15 @@ def test_figure_4_designs(index: int, delta: float, examples: Any, rendered: Any
     assert region["inverse_condition_limit"] == 0.5
     assert region["boundary"] and len(region["boundary"][0][0]) == 2
     assert region["area"] <= region["area_grid"] * 1.01
+    assert region["below_resolution"] is False
+    assert region["largest_inverse_condition"]["value"] == pytest.approx(1.0, abs=1e-5)
+    assert_message_quotes_the_areas(region)
+
+
+def assert_message_quotes_the_areas(region: dict[str, Any]) -> None:
+    """The message names both areas, with the values the entry publishes."""
+    assert f"area {region['area']:.6g}, " in region["message"]
+    assert f"rectangle_region_area {region['rectangle_region_area']:.6g} " in region["message"]
 
 
 def test_w_kappa0_shrinks_with_delta(examples: Any, rendered: Any) -> None:
@@ -426,11 +435,43 @@ def test_given_bounds_and_an_empty_w_kappa0(ctx: RecordingContext) -> None:
 
 
 @pytest.mark.usefixtures("fast_figures")
+def test_a_thin_w_kappa0_is_found_and_noted(ctx: RecordingContext) -> None:
+    # issue 26: the largest 1/kappa is 0.54941 at (0, +-2.3148), where both links fold; the
+    # set is two wedges there of about 1.5e-4 each (brute force: test_kappa_region.py)
+    outcome = run(ctx, l1=2.229, l2=4.8702, e=1.2718, working_mode=[-1, -1],
+                  inverse_condition_limit=0.543, grid={"points_per_axis": 201})  # fmt: skip
+    region = outcome.result["w_kappa0"]
+    assert region["found"] is True
+    assert region["area"] == pytest.approx(2.981e-4, rel=3e-3)
+    assert region["rectangle_region_area"] == pytest.approx(2.426e-4, rel=3e-3)
+    assert region["largest_inverse_condition"]["value"] == pytest.approx(0.549413, abs=1e-6)
+    assert region["below_resolution"] is True
+    assert region["boundary"]
+    assert_message_quotes_the_areas(region)
+    reachable = outcome.result["summary"]["reachable_area_grid"]
+    assert region["area"] < 1e-4 * reachable
+    notes = "\n".join(outcome.all_notes)
+    assert "W_kappa0 is below the resolution" in notes and "W_kappa0 is empty" not in notes
+    assert outcome.result["discretisation"]["w_kappa0"]["columns_added"] > 0
+
+
+@pytest.mark.usefixtures("fast_figures")
+def test_a_limit_above_the_largest_inverse_condition_is_empty(ctx: RecordingContext) -> None:
+    outcome = run(ctx, l1=2.229, l2=4.8702, e=1.2718, working_mode=[-1, -1],
+                  inverse_condition_limit=0.5495)  # fmt: skip
+    region = outcome.result["w_kappa0"]
+    assert region["found"] is False and region["area"] == 0.0 and not region["below_resolution"]
+    notes = "\n".join(outcome.all_notes)
+    assert "W_kappa0 is empty" in notes and "the largest 1/kappa is 0.5494128" in notes
+
+
+@pytest.mark.usefixtures("fast_figures")
 def test_an_empty_w_kappa0_is_noted(ctx: RecordingContext) -> None:
     # telescopic legs from one pivot (e = 0) are parallel everywhere: 1/kappa = 0
     outcome = run(ctx, actuation="telescopic-leg", e=0.0, inverse_condition_limit=0.5)
     region = outcome.result["w_kappa0"]
     assert region["found"] is False and region["area"] == 0.0 and region["boundary"] == []
+    assert region["largest_inverse_condition"] is None
     assert outcome.result["isotropic_point"] is None
     assert outcome.result["summary"]["inverse_condition"]["max"] == 0.0
     notes = "\n".join(outcome.all_notes)
