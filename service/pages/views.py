@@ -209,13 +209,23 @@ def _plots(artifacts: Sequence[ArtifactInfo], base: str) -> list[dict[str, str]]
     ]
 
 
-def _notes(result: Mapping[str, Any]) -> list[dict[str, Any]]:
+def _warnings(result: Mapping[str, Any]) -> list[str]:
+    """``summary.warnings`` of a result: what makes it hold less than it seems to (an
+    empty map, a task point out of reach), shown apart on the page."""
+    summary = result.get("summary")
+    warnings = summary.get("warnings") if isinstance(summary, Mapping) else None
+    return [str(w) for w in warnings] if isinstance(warnings, list) else []
+
+
+def _notes(result: Mapping[str, Any], warnings: Sequence[str]) -> list[dict[str, Any]]:
     notes = result.get("notes")
     errata = result.get("paper_errata")
     marked = {str(e) for e in errata} if isinstance(errata, list) else set()
     if not isinstance(notes, list):
         return []
-    return [{"text": str(n), "erratum": str(n) in marked} for n in notes]
+    return [
+        {"text": str(n), "erratum": str(n) in marked, "warning": str(n) in warnings} for n in notes
+    ]
 
 
 def job_page(
@@ -245,16 +255,19 @@ def job_page(
         "problem": _failure(job),
         "plots": [],
         "notes": [],
+        "warnings": [],
         "errata_count": 0,
         "result": None,
         "downloads": [],
     }
     if result is not None and job.status is JobStatus.SUCCESSFUL:
         results = results_document(job, result)
-        notes = _notes(result)
+        warnings = _warnings(result)
+        notes = _notes(result, warnings)
         context.update(
             plots=_plots(job.artifacts, f"/v1/jobs/{job.job_id}"),
             notes=notes,
+            warnings=warnings,
             errata_count=sum(1 for n in notes if n["erratum"]),
             result=result_view(
                 result,

@@ -104,6 +104,37 @@ async def test_invalid_inputs_name_the_field(asgi_client: httpx.AsyncClient) -> 
     assert listing["jobs"] == []  # nothing was queued
 
 
+@pytest.mark.parametrize(
+    ("process_id", "inputs"),
+    [
+        ("planar3r-dexterity-map", {"links": [15, 14, 8]}),
+        ("planar3r-synthesis", {"l3": 8, "task_points": [[12, 8]]}),
+        ("planar3r-design", {"task_points": [[12, 8]], "total_length_max": 37}),
+        ("design-study", None),
+    ],
+)
+async def test_joint_limits_in_radians_are_refused(
+    asgi_client: httpx.AsyncClient, process_id: str, inputs: dict[str, Any] | None
+) -> None:
+    """Issue 26: [[-2.618, 2.618], ...] was a successful job with an all-grey map."""
+    radians = [[-2.618, 2.618], [-2.618, 2.618], [-3.054, 3.054]]
+    if inputs is None:  # a study forwarding them to the map
+        body = {"process": "planar3r-dexterity-map", "vary": {"links[2]": [6, 10, 3]},
+                "fixed": {"links": [15, 14, 8], "joint_limits_deg": radians,
+                          "task_points": [[14, 14]], "grid": {"points_per_axis": 5}},
+                "objectives": {"task_points[].d_z|min": "max"}}  # fmt: skip
+        field = "inputs.fixed.joint_limits_deg"
+    else:
+        body, field = {**inputs, "joint_limits_deg": radians}, "inputs.joint_limits_deg"
+    r = await asgi_client.post(f"/v1/processes/{process_id}/execution", json={"inputs": body})
+    assert r.status_code == 422, r.text
+    assert r.headers["content-type"] == PROBLEM
+    errors = r.json()["errors"]
+    assert [e["field"] for e in errors] == [field]
+    assert "degrees expected; these look like radians" in errors[0]["message"]
+    assert (await asgi_client.get("/v1/jobs")).json()["jobs"] == []
+
+
 async def test_malformed_body_is_a_problem(asgi_client: httpx.AsyncClient) -> None:
     r = await asgi_client.post(
         "/v1/processes/planar3r-dexterity-map/execution", json={"links": [1, 2, 3]}

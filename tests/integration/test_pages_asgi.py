@@ -142,6 +142,38 @@ async def test_job_pages_show_status_results_plots_and_downloads(
     assert '<option value="fourbar-grashof" selected>' in jobs
 
 
+async def test_a_result_that_holds_less_than_it_seems_shows_a_warning(
+    asgi_client: httpx.AsyncClient,
+) -> None:
+    """Issue 26: an empty map (no grid node reachable) and a task point out of reach are
+    a warning box on the job page, not a quiet grey map."""
+    inputs = {"links": [15, 14, 8], "grid": {"points_per_axis": 2}, "task_points": [[40, 0]]}
+    r = await asgi_client.post(
+        "/v1/processes/planar3r-dexterity-map/execution", json={"inputs": inputs}
+    )
+    assert r.status_code == 201, r.text
+    job_id = r.json()["jobID"]
+    assert (await poll(asgi_client, job_id))["status"] == "successful"
+    page = (await asgi_client.get(f"/v1/jobs/{job_id}", headers=PAGE)).text
+    box = page[page.index('<section class="result-warnings"') :]
+    box = box[: box.index("</section>")]
+    assert '<h2 id="warnings-title">Warnings</h2>' in box
+    assert "The map is empty: no node of the grid" in box
+    assert "Task point A (40, 0) is out of reach" in box
+    assert page.index("result-warnings") < page.index('id="notes-title"')
+    assert page.count('<li class="warning"><span class="warning-tag">Warning</span>') == 2
+    assert 'style="' not in box  # the CSP forbids inline styles: the look is in pages.css
+    css = (await asgi_client.get("/static/pages/pages.css")).text
+    assert ".result-warnings {" in css and "ul.notes li.warning {" in css
+    sound = {"links": [15, 14, 8], "grid": {"points_per_axis": 5}, "task_points": [[12, 8]]}
+    r = await asgi_client.post(
+        "/v1/processes/planar3r-dexterity-map/execution", json={"inputs": sound}
+    )
+    job_id = r.json()["jobID"]
+    assert (await poll(asgi_client, job_id))["status"] == "successful"
+    assert "result-warnings" not in (await asgi_client.get(f"/v1/jobs/{job_id}", headers=PAGE)).text
+
+
 async def test_job_list_pages_follow_the_cursor(asgi_client: httpx.AsyncClient) -> None:
     ids = [await run_fourbar(asgi_client) for _ in range(3)]
     first = (await asgi_client.get("/v1/jobs?limit=2&status=successful", headers=PAGE)).text

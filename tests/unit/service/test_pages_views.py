@@ -112,3 +112,20 @@ def test_results_show_each_number_with_its_symbol_and_unit(pages: Pages) -> None
     assert 'length <span class="symbol">L_i</span> <span class="unit">[cm]</span></th>' in html
     shortest = html.split(">shortest</th>", 1)[1].split("</tr>", 1)[0]
     assert "unit" not in shortest  # an index: a pure number
+
+
+def test_result_warnings_stand_out(pages: Pages) -> None:
+    """summary.warnings (issue 26: an empty map, a task point out of reach) are a box
+    above the plots and tagged among the notes; a result without them has neither."""
+    warning = "The map is empty: no node of the grid is reachable."
+    notes = [warning, "An ordinary note."]
+    result = {"summary": {"warnings": [warning], "reachable_points": 0}, "notes": notes}
+    html = page_of(pages, job(JobStatus.SUCCESSFUL, progress=100), result)
+    box = html[html.index('<section class="result-warnings"') :]
+    assert '<h2 id="warnings-title">Warning</h2>' in box[: box.index("</section>")]
+    assert warning in box[: box.index("</section>")]
+    assert f'<li class="warning"><span class="warning-tag">Warning</span> {warning}' in html
+    assert "<li>An ordinary note.</li>" in html
+    quiet = {"summary": {"warnings": [], "reachable_points": 7}, "notes": notes[1:]}
+    html = page_of(pages, job(JobStatus.SUCCESSFUL, progress=100), quiet)
+    assert "result-warnings" not in html and "warning-tag" not in html

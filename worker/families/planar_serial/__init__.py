@@ -68,7 +68,11 @@ _LIMITS_TEXT = (
 
 DEXTERITY_MAP = ProcessDefinition(
     id="planar3r-dexterity-map",
-    version="1.1.0",  # radial_section: the curve stops where the arm cannot reach
+    # 1.1.0: radial_section: the curve stops where the arm cannot reach; 2.0.0: under
+    # joint limits 'regions' and 'full_dexterity_bands' are the limited arm's along the
+    # radial section's ray (the unlimited arm's moved under areas.unlimited_reference);
+    # summary.warnings and unreachable_task_points (issue 26)
+    version="2.0.0",
     result_paths=DEXTERITY_MAP_RESULT_PATHS,
     title="Three-link planar arm: dexterity map",
     method_doc="planar-serial",
@@ -87,9 +91,11 @@ DEXTERITY_MAP = ProcessDefinition(
         "two-link annulus), both elbow branches, exact to rounding; method "
         "'orientation-sampling': orientations sampled every orientation_step_deg, task "
         "points refined by bisection. Reports the paper's four regions next to the exact "
-        "bands of full dexterity, reachable and fully dexterous areas (of the joint-limited "
-        "arm under limits), d_z at task points and along a trajectory (eq 4 mean), CSV/NPZ "
-        "data and heat-map, 3-D surface and radial-section plots. "
+        "bands of full dexterity (under joint limits the limited arm's, along the radial "
+        "section's ray), reachable and fully dexterous areas (of the joint-limited arm "
+        "under limits), d_z at task points and along a trajectory (eq 4 mean), CSV/NPZ "
+        "data and heat-map, 3-D surface and radial-section plots; an empty map or a task "
+        "point out of reach is a warning. "
         + _LIMITS_TEXT.format(
             unit="grid points x orientations tested per point (1 without joint limits, "
             "at most 21 sub-arcs with exact events, the samples with orientation sampling)"
@@ -108,13 +114,18 @@ DEXTERITY_MAP = ProcessDefinition(
         "and sample count (sampling) or events per point and unused_inputs (exact events), "
         "elbow branches, method for task points and trajectory samples, radial section.",
         "regions": "The paper's regions 1-4 (distance ranges), its claim for each, and the "
-        "exact finding (fully dexterous bands inside, d_z range along a ray).",
-        "full_dexterity_bands": "Exact radii [[r0, r1], ...] where d_z = 1 for revolute "
-        "joints (under joint limits a reference only).",
+        "exact finding (fully dexterous bands inside, d_z range along a ray); under joint "
+        "limits the limited arm's along the radial section's ray (exact events).",
+        "full_dexterity_bands": "Exact radii [[r0, r1], ...] where d_z = 1: for revolute "
+        "joints at every angle; under joint limits the limited arm's along the radial "
+        "section's ray (possibly none).",
         "areas": "Reachable and fully dexterous areas: exact for revolute joints; under joint "
-        "limits the limited arm's, counted on the map, with unlimited_reference; their grid "
-        "estimates, the cell area and how they were obtained (method).",
-        "summary": "d_z_max, mean d_z and D over reachable nodes, node counts.",
+        "limits the limited arm's, counted on the map, with unlimited_reference (the "
+        "unlimited arm's areas, full_dexterity_bands and regions); their grid estimates, "
+        "the cell area and how they were obtained (method).",
+        "summary": "d_z_max, mean d_z and D over reachable nodes, node counts, "
+        "unreachable_task_points (labels of task points with d_z = 0) and warnings (an "
+        "empty map, task points out of reach; also the first notes).",
         "task_points": "Per task point, in order: label, x, y, distance, d_z, D, region.",
         "trajectory": "Along the sampled trajectory: samples, d_z_mean, D_mean (eq 4), "
         "d_z_min, fully_dexterous_fraction; null without a trajectory.",

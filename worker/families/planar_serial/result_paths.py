@@ -15,6 +15,9 @@ _LIMITS = R("joint_limits_deg[][]", "deg", r"$\theta_i$",
             "Joint limits [lower, upper] of each joint (null without limits).")  # fmt: skip
 _BANDS = R("full_dexterity_bands[][]", "length", "$d$", "Exact distance bands [r0, r1] "
            "from the base where d_z = 1 (revolute joints).")  # fmt: skip
+_MAP_BANDS = R("full_dexterity_bands[][]", "length", "$d$", "Exact distance bands [r0, r1] "
+               "from the base where d_z = 1: with revolute joints at every angle, under "
+               "joint limits the limited arm's along the radial section's ray.")  # fmt: skip
 
 _GRID = (
     R("grid.bounds[]", "length", "", "Grid bounds [x_min, x_max, y_min, y_max]."),
@@ -51,10 +54,23 @@ _REGIONS = (
     R("d_from", "length", "$d$", "Distance from the base where the region starts."),
     R("d_to", "length", "$d$", "Distance from the base where the region ends."),
     R("fully_dexterous_bands[][]", "length", "$d$",
-      "Exact bands inside the region where d_z = 1 (unlimited joints)."),
-    R("d_z_min", "-", r"$\min\,d_z$", "Least d_z over the region along the ray phi = 0."),
+      "Exact bands inside the region where d_z = 1 (under joint limits along the radial "
+      "section's ray)."),
+    R("d_z_min", "-", r"$\min\,d_z$", "Least d_z over the region along the radial "
+      "section's ray (exact events under joint limits)."),
     R("d_z_min_at", "length", "$d$", "The distance where that least d_z is reached."),
     R("d_z_max", "-", r"$\max\,d_z$", "Largest d_z over the region along the ray."),
+)  # fmt: skip
+
+_UNLIMITED_REGIONS = (
+    R("region", "-", "", "Region number 1-4 (the paper's §5)."),
+    R("d_from", "length", "$d$", "Distance from the base where the region starts."),
+    R("d_to", "length", "$d$", "Distance from the base where the region ends."),
+    R("fully_dexterous_bands[][]", "length", "$d$",
+      "Exact bands inside the region where d_z = 1 without joint limits."),
+    R("d_z_min", "-", r"$\min\,d_z$", "Least d_z over the region without joint limits."),
+    R("d_z_min_at", "length", "$d$", "The distance where that least d_z is reached."),
+    R("d_z_max", "-", r"$\max\,d_z$", "Largest d_z over the region without joint limits."),
 )  # fmt: skip
 
 _AREAS = (
@@ -70,6 +86,7 @@ _AREAS = (
       "Exact fully dexterous area without joint limits."),
     R("unlimited_reference.full_dexterity_bands[][]", "length", "$d$",
       "Exact bands with d_z = 1 without joint limits."),
+    *prefixed("unlimited_reference.regions[]", _UNLIMITED_REGIONS),
 )  # fmt: skip
 
 _SUMMARY = (
@@ -91,7 +108,7 @@ DEXTERITY_MAP_RESULT_PATHS = (
     R("discretisation.radial_section.d_to", "length", "$d$",
       "Farthest distance of the radial section."),
     *prefixed("regions[]", _REGIONS),
-    _BANDS,
+    _MAP_BANDS,
     *prefixed("areas", _AREAS),
     *prefixed("summary", _SUMMARY),
     *prefixed("task_points[]", _TASK_POINTS),

@@ -33,6 +33,11 @@ from worker.common.numeric_ranges import (
     ratio_schema,
 )
 from worker.common.specs import MAX_POINTS_PER_AXIS, FrozenSpec, GridSpecBase
+from worker.families.planar_serial.joint_limits_input import (
+    JOINT_LIMITS_DESCRIPTION,
+    JointLimitsDeg,
+    checked_joint_limits_deg,
+)
 
 __all__ = [
     "MAX_ORIENTATION_STEP_DEG",
@@ -41,6 +46,7 @@ __all__ = [
     "MIN_ORIENTATION_STEP_DEG",
     "DexterityMapSpec",
     "GridSpec",
+    "JointLimitsDeg",
     "PolylineTrajectory",
     "PolynomialTrajectory",
     "SynthesisSpec",
@@ -65,7 +71,6 @@ Length = PositiveLength
 LENGTH_UNIT: dict[str, JsonValue] = {"x-unit": "length"}
 #: A polynomial coefficient (the trajectory's y must stay within the coordinate range).
 Coefficient = Annotated[float, Field(ge=-MAX_COORDINATE, le=MAX_COORDINATE)]
-JointLimitsDeg = tuple[tuple[float, float], tuple[float, float], tuple[float, float]]
 
 
 def default_task_labels(count: int) -> tuple[str, ...]:
@@ -207,11 +212,6 @@ _LINKS_DESCRIPTION = (
     "Link lengths [l1, l2, l3], from the base to the end-effector, each in [1e-6, 1e6], "
     "the longest at most 1e6 times the shortest."
 )
-_LIMITS_DESCRIPTION = (
-    "Joint limits [[lo, hi], [lo, hi], [lo, hi]] in degrees for joints 1..3, with "
-    "-180 <= lo <= hi <= 180; joint angles are wrapped to (-180, 180]. Omit for fully "
-    "revolute joints (the exact closed form is then used)."
-)
 _TASK_POINTS_DESCRIPTION = f"Task points [[x, y], ...] (at most {MAX_TASK_POINTS})."
 _LABELS_DESCRIPTION = "Labels of the task points, one each (default A, B, C, ...)."
 _STEP_DESCRIPTION = (
@@ -241,28 +241,14 @@ def _three_entries(what: str) -> BeforeValidator:
     return BeforeValidator(check)
 
 
-def _check_joint_limits(limits: JointLimitsDeg | None) -> JointLimitsDeg | None:
-    for index, (lo, hi) in enumerate(limits or ()):
-        for name, value in (("lower", lo), ("upper", hi)):
-            if not -180.0 <= value <= 180.0:
-                raise ValueError(
-                    f"joint_limits_deg[{index}]: {name} limit {value:g} is outside [-180, 180]"
-                )
-        if lo > hi:
-            raise ValueError(
-                f"joint_limits_deg[{index}]: lower limit {lo:g} exceeds upper limit {hi:g}"
-            )
-    return limits
-
-
 class TaskInputs(FrozenSpec):
     """Fields shared by every planar3r job: limits, grid, task, unit, plots."""
 
     joint_limits_deg: Annotated[
         JointLimitsDeg | None,
         _three_entries("joint_limits_deg needs one [lo, hi] pair per joint (3)"),
-        AfterValidator(_check_joint_limits),
-    ] = Field(None, description=_LIMITS_DESCRIPTION)
+        AfterValidator(checked_joint_limits_deg),
+    ] = Field(None, description=JOINT_LIMITS_DESCRIPTION)
     grid: GridSpec = Field(default_factory=GridSpec, description="The evaluation grid.")
     task_points: tuple[Point, ...] | None = Field(
         None,

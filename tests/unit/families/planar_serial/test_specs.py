@@ -12,6 +12,7 @@ from pydantic import ValidationError
 
 from worker.families.planar_serial import DEXTERITY_MAP, SYNTHESIS
 from worker.families.planar_serial.costs import COST_LIMIT, dexterity_map_cost, synthesis_cost
+from worker.families.planar_serial.design_spec import DesignSpec
 from worker.families.planar_serial.examples import PAPER_JOINT_LIMITS_DEG
 from worker.families.planar_serial.specs import (
     DexterityMapSpec,
@@ -177,6 +178,36 @@ SYNTHESIS_ERRORS = [
 def test_synthesis_rejects(inputs: dict[str, Any], message: str) -> None:
     with pytest.raises(ValidationError, match=message):
         synthesis_spec(**inputs)
+
+
+# -- issue 26, finding 4: joint limits typed in radians are refused -----------------
+
+RADIANS = [[-2.618, 2.618], [-2.618, 2.618], [-3.054, 3.054]]
+
+
+@pytest.mark.parametrize(
+    "build",
+    [
+        lambda limits: map_spec(joint_limits_deg=limits),
+        lambda limits: synthesis_spec(joint_limits_deg=limits),
+        lambda limits: DesignSpec.model_validate(
+            {"task_points": [[12, 8]], "total_length_max": 37, "joint_limits_deg": limits}
+        ),
+    ],
+    ids=["planar3r-dexterity-map", "planar3r-synthesis", "planar3r-design"],
+)
+@pytest.mark.parametrize(
+    "limits", [RADIANS, [[-1, 1], [0, 0], [-6.2832, 6.2832]], [[-5, 5]] * 3], ids=str
+)
+def test_limits_that_look_like_radians_are_refused(build: Any, limits: Any) -> None:
+    with pytest.raises(ValidationError, match="degrees expected; these look like radians") as info:
+        build(limits)
+    assert [e["loc"] for e in info.value.errors()] == [("joint_limits_deg",)]
+
+
+@pytest.mark.parametrize("limits", [[[-6.3, 6.3], [0, 0], [0, 0]], [[0, 90], [-1, 1], [-2, 2]]])
+def test_one_value_beyond_2pi_is_degrees(limits: list[list[float]]) -> None:
+    assert map_spec(joint_limits_deg=limits).joint_limits_deg is not None
 
 
 def test_synthesis_accepts_a_trajectory_alone() -> None:

@@ -153,3 +153,13 @@ def test_a_refusal_at_a_place_holding_a_varied_input_is_for_its_value() -> None:
     assert process is not None
     (row,) = evaluate_block(study, process, 0, 1)
     assert row.reason is not None and "inputs.joint_limits_deg" in row.reason
+
+
+def test_joint_limits_in_radians_are_refused_whatever_is_varied() -> None:
+    """Issue 26: a study forwarding radians to planar3r-dexterity-map is refused at
+    submission, by the static check of the process's own inputs."""
+    radians = [[-2.618, 2.618], [-2.618, 2.618], [-3.054, 3.054]]
+    problems = dry_check(spec(fixed={**BASE["fixed"], "joint_limits_deg": radians}))
+    assert [p["field"] for p in problems] == ["inputs.fixed.joint_limits_deg"]
+    assert "degrees expected; these look like radians" in problems[0]["message"]
+    assert dry_check(spec(fixed={**BASE["fixed"], "joint_limits_deg": [[-150, 150]] * 3})) == []

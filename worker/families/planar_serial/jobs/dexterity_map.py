@@ -34,8 +34,17 @@ from worker.families.planar_serial.jobs.dexterity_evaluation import (
     point_method,
     workspace_grid,
 )
-from worker.families.planar_serial.jobs.regions import region_2_note, region_table
-from worker.families.planar_serial.jobs.task_points import shortfall_notes, task_point_entries
+from worker.families.planar_serial.jobs.map_notes import (
+    map_notes,
+    map_warnings,
+    unreachable_labels,
+)
+from worker.families.planar_serial.jobs.regions import (
+    LimitedRay,
+    limited_ray_profile,
+    region_table,
+)
+from worker.families.planar_serial.jobs.task_points import task_point_entries
 from worker.families.planar_serial.jobs.trajectories import (
     trajectory_path,
     trajectory_samples,
@@ -82,8 +91,13 @@ def run_dexterity_map(spec: DexterityMapSpec, ctx: JobContext) -> JobOutcome:
     radial_d = np.linspace(0.0, _radial_reach(links), RADIAL_SAMPLES)
     radial_dz = _radial_section(links, radial_d, sampling)
 
-    result = _result(spec, grid, sampling, d_z, task_entries, trajectory)
-    notes = _notes(spec, sampling, task_entries, trajectory, result["regions"])
+    progress.report(87.0, "regions along the ray")
+    ray = None
+    if sampling is not None:
+        ray = limited_ray_profile(links, sampling.joint_limits_rad, RADIAL_ANGLE_DEG)
+    warnings = map_warnings(spec, grid, int(np.count_nonzero(d_z > 0.0)), task_entries)
+    result = _result(spec, grid, sampling, ray, d_z, task_entries, trajectory, warnings)
+    notes = warnings + map_notes(spec, sampling, ray, task_entries, trajectory, result["regions"])
     errata = dexterity_map_errata_notes(spec, result)
 
     artifacts: tuple[Artifact, ...] = ()
@@ -118,12 +132,14 @@ def _result(
     spec: DexterityMapSpec,
     grid: WorkspaceGrid,
     sampling: LimitedJoints | None,
+    ray: LimitedRay | None,
     d_z: FloatArray,
     task_entries: list[dict[str, Any]],
     trajectory: dict[str, float | int] | None,
+    warnings: list[str],
 ) -> dict[str, Any]:
     links = spec.links
-    bands = planar_serial.full_dexterity_bands(links)
+    bands = planar_serial.full_dexterity_bands(links) if ray is None else ray.bands
     reachable = d_z > 0.0
     full = d_z >= 1.0 - FULL_DEXTERITY_TOL
     reachable_dz = d_z[reachable]
@@ -144,7 +160,7 @@ def _result(
                 "method": map_method(sampling),
             },
         },
-        "regions": region_table(links),
+        "regions": region_table(links, ray),
         "full_dexterity_bands": [list(band) for band in bands],
         "areas": _areas(links, grid, sampling, reachable, full),
         "summary": {
@@ -153,6 +169,8 @@ def _result(
             "D_mean_reachable": mean_reachable / 3.0,
             "reachable_points": int(reachable.sum()),
             "fully_dexterous_points": int(full.sum()),
+            "unreachable_task_points": unreachable_labels(task_entries),
+            "warnings": warnings,
         },
         "task_points": task_entries,
         "trajectory": trajectory,
@@ -187,7 +205,11 @@ def _areas(
         "fully_dexterous": on_grid["fully_dexterous_grid"],
         **on_grid,
         "method": f"grid count of {sampling.method} d_z (joint-limited arm)",
-        "unlimited_reference": {**unlimited, "full_dexterity_bands": [list(b) for b in bands]},
+        "unlimited_reference": {
+            **unlimited,
+            "full_dexterity_bands": [list(b) for b in bands],
+            "regions": region_table(links),
+        },
     }
 
 
@@ -195,50 +217,6 @@ def _limits_list(spec: DexterityMapSpec) -> list[list[float]] | None:
     if spec.joint_limits_deg is None:
         return None
     return [list(pair) for pair in spec.joint_limits_deg]
-
-
-def _notes(
-    spec: DexterityMapSpec,
-    sampling: LimitedJoints | None,
-    task_entries: list[dict[str, Any]],
-    trajectory: dict[str, float | int] | None,
-    regions: list[dict[str, Any]],
-) -> list[str]:
-    notes = [region_2_note(spec.links, regions)]
-    if spec.joint_limits_deg is not None and sampling is None:
-        notes.append("Every joint limit spans the full turn [-180, 180]: the exact closed form "
-                     "for unlimited joints was used.")  # fmt: skip
-    if sampling is not None:
-        notes.append(_limited_note(spec, sampling))
-    notes.extend(shortfall_notes(task_entries))
-    if trajectory is not None and trajectory["fully_dexterous_fraction"] < 1.0:
-        percent = 100.0 * trajectory["fully_dexterous_fraction"]
-        notes.append(
-            f"The trajectory is fully dexterous at {percent:.1f}% of its "
-            f"{trajectory['samples']} samples (min d_z = {trajectory['d_z_min']:.4f})."
-        )
-    return notes
-
-
-def _limited_note(spec: DexterityMapSpec, sampling: LimitedJoints) -> str:
-    if sampling.sampled:
-        how = (
-            f"sampled every {sampling.effective_step_deg:.6g}° ({sampling.samples} "
-            "orientations, both elbow branches; features narrower than a step can be missed)"
-        )
-    else:
-        how = (
-            "exact: the feasible orientation arcs between closed-form events (up to "
-            f"{sampling.events_per_point} per point, both elbow branches) are summed"
-        )
-        if "orientation_step_deg" in spec.model_fields_set:
-            how += "; orientation_step_deg is not used by this method"
-    return (
-        f"Under joint limits d_z is {how}. The map is no longer radially symmetric, so the "
-        f"radial section holds only along the ray at {RADIAL_ANGLE_DEG:g}° (task points are "
-        "not marked on it). The areas are the joint-limited arm's, counted on this map; "
-        "'full_dexterity_bands' and areas.unlimited_reference are for unlimited joints."
-    )
 
 
 def _plots(

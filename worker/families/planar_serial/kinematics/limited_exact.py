@@ -47,6 +47,7 @@ from worker.families.planar_serial.kinematics.inputs import (
 from worker.families.planar_serial.kinematics.joint_limits import feasible_orientations
 
 __all__ = [
+    "event_conditions",
     "event_count",
     "exact_limited_orientation_dexterity",
     "feasible_arcs",
@@ -90,33 +91,56 @@ def _roots(ax: FloatArray, ay: FloatArray, k: FloatArray) -> tuple[FloatArray, F
     return centre - half, centre + half
 
 
-def orientation_events(
+def event_conditions(
     links: LinkLengths, limits: FloatArray, px: FloatArray, py: FloatArray
-) -> FloatArray:
-    """Event orientations (m, event_count) in rad, NaN where a condition has no root.
+) -> tuple[FloatArray, FloatArray, FloatArray]:
+    """The event conditions ``ax cos phi + ay sin phi = k`` at m points: (ax, ay, k).
 
     links (three numbers, or three (m,) columns, one design per point) and limits
-    checked; px, py: (m,) coordinates.  Column order: annulus edges,
-    th2 limits, th1 limits, th3 limits, two roots each.
+    checked; px, py: (m,) coordinates.  Each output is (m, C) with C = event_count(limits)
+    / 2 columns: annulus edges, th2 limits, th1 limits, th3 limits.  ax and ay are affine
+    in (px, py), k is quadratic: along a ray from the base they are polynomials of degree
+    1 and 2 in the distance (:mod:`.ray.events`).
     """
     l1, l2, l3 = links
-    columns: list[FloatArray] = []
+    ax: list[FloatArray] = []
+    ay: list[FloatArray] = []
+    k: list[FloatArray] = []
     p2 = px * px + py * py
     wrist_radii2 = [(l1 + l2) ** 2, (l1 - l2) ** 2]
     wrist_radii2 += [
         l1 * l1 + l2 * l2 + 2.0 * l1 * l2 * math.cos(t) for t in _limit_angles(limits, 1)
     ]
     for radius2 in wrist_radii2:  # |p - l3 u|^2 = R^2  <=>  p . u = (|p|^2 + l3^2 - R^2) / (2 l3)
-        columns.extend(_roots(px, py, (p2 + (l3 * l3 - radius2)) / (2.0 * l3)))
+        ax.append(px)
+        ay.append(py)
+        k.append((p2 + (l3 * l3 - radius2)) / (2.0 * l3))
     for t in _limit_angles(limits, 0):  # |q - l3 u| = l2 with q = p - l1 u(t)
         qx, qy = px - l1 * math.cos(t), py - l1 * math.sin(t)
-        columns.extend(_roots(qx, qy, (qx * qx + qy * qy + (l3 * l3 - l2 * l2)) / (2.0 * l3)))
+        ax.append(qx)
+        ay.append(qy)
+        k.append((qx * qx + qy * qy + (l3 * l3 - l2 * l2)) / (2.0 * l3))
     for t in _limit_angles(limits, 2):  # |p - c e^{i phi}| = l1 with c = l3 + l2 e^{-it}
         cx, cy = l3 + l2 * math.cos(t), -l2 * math.sin(t)
         # Re(conj(p) c e^{i phi}) = (|p|^2 + |c|^2 - l1^2) / 2, conj(p) c = zr + i zi
-        zr, zi = px * cx + py * cy, px * cy - py * cx
-        columns.extend(_roots(zr, -zi, 0.5 * (p2 + (cx * cx + cy * cy - l1 * l1))))
-    return np.stack(columns, axis=-1)
+        ax.append(px * cx + py * cy)
+        ay.append(py * cx - px * cy)
+        k.append(0.5 * (p2 + (cx * cx + cy * cy - l1 * l1)))
+    return np.stack(ax, axis=-1), np.stack(ay, axis=-1), np.stack(k, axis=-1)
+
+
+def orientation_events(
+    links: LinkLengths, limits: FloatArray, px: FloatArray, py: FloatArray
+) -> FloatArray:
+    """Event orientations (m, event_count) in rad, NaN where a condition has no root.
+
+    links (three numbers, or three (m,) columns, one design per point) and limits
+    checked; px, py: (m,) coordinates.  Column order: the conditions of
+    :func:`event_conditions` in turn, two roots each (centre - half, centre + half).
+    """
+    ax, ay, k = event_conditions(links, limits, px, py)
+    minus, plus = _roots(ax, ay, k)
+    return np.stack([minus, plus], axis=-1).reshape(px.shape[0], -1)
 
 
 def _sub_arcs(events: FloatArray) -> tuple[FloatArray, FloatArray]:

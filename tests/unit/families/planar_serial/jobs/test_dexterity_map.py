@@ -17,7 +17,11 @@ from worker.families.planar_serial import DEXTERITY_MAP
 from worker.families.planar_serial import kinematics as planar_serial
 from worker.families.planar_serial.examples import DEXTERITY_MAP_EXAMPLES, PAPER_JOINT_LIMITS_DEG
 from worker.families.planar_serial.jobs.dexterity_map import run_dexterity_map
+from worker.families.planar_serial.jobs.regions import region_table
 from worker.families.planar_serial.jobs.trajectories import trajectory_path, trajectory_samples
+from worker.families.planar_serial.kinematics.limited_exact import (
+    exact_limited_orientation_dexterity,
+)
 from worker.families.planar_serial.specs import (
     DexterityMapSpec,
     PolylineTrajectory,
@@ -92,8 +96,9 @@ class TestWorkedExamples:
         assert grid["bounds"] == pytest.approx([-38.85, 38.85, -38.85, 38.85])
         assert grid["step"] == pytest.approx([0.3885, 0.3885])
         assert [r["region"] for r in result["regions"]] == [1, 2, 3, 4]
-        assert result["full_dexterity_bands"] == [[0.0, 7.0], [9.0, 21.0]]
         assert [e["label"] for e in result["task_points"]] == ["A", "B", "C", "D", "E"]
+        assert result["summary"]["warnings"] == []
+        assert result["summary"]["unreachable_task_points"] == []
 
     def test_artifacts(self, example: str, request: pytest.FixtureRequest) -> None:
         outcome, _ = request.getfixturevalue(example)
@@ -158,6 +163,7 @@ class TestWorkedExamples:
         assert reference["reachable"] == pytest.approx(math.pi * 37**2)
         assert reference["fully_dexterous"] == pytest.approx(math.pi * 409)
         assert reference["full_dexterity_bands"] == [[0.0, 7.0], [9.0, 21.0]]
+        assert reference["regions"] == region_table((15.0, 14.0, 8.0))
 
 
 # -- Case 1: revolute joints, exact ----------------------------------------------------
@@ -204,6 +210,10 @@ def test_ideal_areas_ratio(ideal: tuple[JobOutcome, RecordingContext]) -> None:
     assert areas["fully_dexterous"] / areas["reachable"] == pytest.approx(0.298758, abs=1e-6)
     assert areas["reachable_grid"] == pytest.approx(areas["reachable"], rel=0.01)
     assert areas["fully_dexterous_grid"] == pytest.approx(areas["fully_dexterous"], rel=0.01)
+
+
+def test_ideal_bands_are_the_closed_form(ideal: tuple[JobOutcome, RecordingContext]) -> None:
+    assert ideal[0].result["full_dexterity_bands"] == [[0.0, 7.0], [9.0, 21.0]]
 
 
 def test_regions_against_methods(ideal: tuple[JobOutcome, RecordingContext]) -> None:
@@ -319,6 +329,85 @@ def test_limited_notes(limited: tuple[JobOutcome, RecordingContext]) -> None:
     assert "d_z = 0.8807 < 1" in notes
     assert "ray at 0°" in notes
     assert "trajectory is fully dexterous at" in notes
+    region_2 = limited[0].all_notes[0]
+    assert "Region 2" in region_2 and "with these joint limits, along the ray at 0°" in region_2
+    assert "[0, 0.43235] ∪ [15.5677, 20.897]" in region_2 and "0.605127" in region_2
+    assert "with unlimited joints [0, 7] ∪ [9, 21]" in region_2
+
+
+# -- issue 26, finding 2: under joint limits every field describes the limited arm ----
+
+
+def along_the_ray(distances: np.ndarray) -> np.ndarray:
+    """Example 1's arm under the paper's limits along the radial section's ray (0°)."""
+    points = np.stack([distances, np.zeros_like(distances)], axis=-1)
+    return exact_limited_orientation_dexterity(
+        (15, 14, 8), points, np.radians(PAPER_JOINT_LIMITS_DEG)
+    )
+
+
+def test_limited_regions_are_the_limited_arms(limited: tuple[JobOutcome, RecordingContext]) -> None:
+    result = limited[0].result
+    regions = result["regions"]
+    for region in regions[:3]:
+        distances = np.linspace(region["d_from"], region["d_to"], 4001)
+        d_z = along_the_ray(distances)
+        assert region["d_z_min"] <= d_z.min() + 1e-10
+        assert region["d_z_max"] >= d_z.max() - 1e-10
+        assert along_the_ray(np.array([region["d_z_min_at"]]))[0] == region["d_z_min"]
+        assert "with these joint limits, along the ray at 0°" in region["corrected"]
+        assert region["paper"].endswith("; claimed for unlimited joints")
+    region_1, region_2, region_3, _ = regions
+    assert region_2["d_z_min"] == pytest.approx(0.686358, abs=1e-6)  # not 0.960 (unlimited)
+    assert region_2["d_z_min_at"] == 8.0
+    assert region_1["d_z_min"] == pytest.approx(0.605127, abs=1e-6)
+    assert region_3["d_z_max"] == pytest.approx(0.976595, abs=1e-6)
+    # task point B (d = 14.42, region 2) has 0.8807 in the same result: inside the range
+    b = by_label(limited[0])["B"]
+    assert b["region"] == 2 and region_2["d_z_min"] < b["d_z"] < region_2["d_z_max"]
+    assert "[9, 21]" not in region_2["corrected"] and "[15.5677, 20.897]" in region_2["corrected"]
+
+
+def test_limited_bands_are_the_limited_arms(limited: tuple[JobOutcome, RecordingContext]) -> None:
+    result = limited[0].result
+    np.testing.assert_allclose(result["full_dexterity_bands"],
+                               [[0.0, 0.432350], [15.567650, 20.897015]], atol=1e-6)  # fmt: skip
+    region_1, region_2, region_3, _ = result["regions"]
+    assert region_1["fully_dexterous_bands"] == result["full_dexterity_bands"][:1]
+    assert region_2["fully_dexterous_bands"] == result["full_dexterity_bands"][1:]
+    assert region_3["fully_dexterous_bands"] == []
+    distances = np.linspace(0.0, 37.0, 37001)
+    full = along_the_ray(distances) >= 1 - 1e-12
+    inside = np.zeros_like(full)
+    for lo, hi in result["full_dexterity_bands"]:
+        inside |= (distances >= lo - 1e-9) & (distances <= hi + 1e-9)
+    np.testing.assert_array_equal(full, inside)
+
+
+@pytest.mark.usefixtures("fast_figures")
+@pytest.mark.parametrize(
+    ("links", "limits_deg"),
+    [
+        ((15, 14, 8), [[-90, 90], [-120, 120], [-170, 170]]),
+        ((10, 10, 5), [[0, 120], [-150, 30], [-90, 90]]),
+        ((23, 22, 15), [[-150, 150], [-150, 150], [-175, 175]]),
+        ((6, 9, 3), [[-180, 180], [-45, 45], [-180, 180]]),
+    ],
+)
+def test_other_arms_regions_hold_their_ray(ctx: RecordingContext, links, limits_deg) -> None:
+    spec = DexterityMapSpec.model_validate(
+        {"links": links, "joint_limits_deg": limits_deg, "grid": {"points_per_axis": 3}}
+    )
+    result = run_dexterity_map(spec, ctx).result
+    for region in result["regions"][:3]:
+        if region["d_z_min"] is None:
+            continue
+        distances = np.linspace(region["d_from"], region["d_to"], 2001)
+        points = np.stack([distances, np.zeros_like(distances)], axis=-1)
+        d_z = exact_limited_orientation_dexterity(links, points, np.radians(limits_deg))
+        assert region["d_z_min"] <= d_z.min() + 1e-10 and region["d_z_max"] >= d_z.max() - 1e-10
+        assert region["d_z_min"] >= d_z.min() - 0.02  # not the unlimited arm's
+    assert result["areas"]["unlimited_reference"]["regions"] == region_table(links)
 
 
 # -- other inputs (figures built, not rendered) ----------------------------------------
@@ -477,3 +566,44 @@ def test_plots_false_gives_data_files_only(ctx: RecordingContext) -> None:
     )
     outcome = run_synthesis(synth, ctx)
     assert [a.name for a in outcome.artifacts] == ["synthesis_cases.npz"]
+
+
+# -- issue 26, finding 4: an empty map, or a task point out of reach, is flagged ------
+
+
+@pytest.mark.usefixtures("fast_figures")
+def test_an_empty_map_says_so_first(ctx: RecordingContext) -> None:
+    # 2 x 2 nodes at the corners of the default grid, all beyond the reach 37
+    outcome = run(ctx, grid={"points_per_axis": 2}, task_points=[[10, 0]])
+    summary = outcome.result["summary"]
+    assert summary["reachable_points"] == 0 and summary["d_z_max"] == 0.0
+    (warning,) = summary["warnings"]
+    assert warning.startswith("The map is empty: no node of the grid")
+    assert "d_z = 0 at all 4 nodes" in warning and "more points_per_axis" in warning
+    assert outcome.all_notes[0] == warning
+    assert summary["unreachable_task_points"] == []
+
+
+@pytest.mark.usefixtures("fast_figures")
+def test_an_empty_map_under_joint_limits_names_them(ctx: RecordingContext) -> None:
+    # th1 and th2 locked at 0: the wrist stays at (29, 0), so no node has d_z > 0
+    limits = [[0, 0], [0, 0], [-180, 180]]
+    outcome = run(ctx, grid={"points_per_axis": 21}, joint_limits_deg=limits)
+    result = outcome.result
+    assert result["summary"]["reachable_points"] == 0
+    (warning,) = result["summary"]["warnings"]
+    assert "The map is empty" in warning and "[[0.0, 0.0], [0.0, 0.0], [-180.0, 180.0]]" in warning
+    assert outcome.all_notes[0] == warning
+    assert all(region["d_z_max"] == 0.0 for region in result["regions"])
+    assert result["full_dexterity_bands"] == []
+
+
+@pytest.mark.usefixtures("fast_figures")
+def test_a_task_point_out_of_reach_is_a_warning(ctx: RecordingContext) -> None:
+    outcome = run(ctx, grid={"points_per_axis": 5}, task_points=[[12, 8], [40, 0], [0, 50]])
+    summary = outcome.result["summary"]
+    assert summary["unreachable_task_points"] == ["B", "C"]
+    (warning,) = summary["warnings"]
+    assert warning.startswith("Task points B (40, 0), C (0, 50) are out of reach (d_z = 0)")
+    assert outcome.all_notes[0] == warning
+    assert "task point B (40, 0) has d_z = 0.0000 < 1" in "\n".join(outcome.all_notes)
