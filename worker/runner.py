@@ -6,6 +6,9 @@ loop's guard thread (:mod:`worker.attempt_guard`) renews the lease.  It stops th
 process (``os._exit``) when the job is dismissed, when another attempt took the job
 over, or when the job's time limit passes (after recording the failure); the pool then
 starts a fresh process in its place.
+With nothing to claim, a local pool's process sleeps until a hint on its pool's wake-up
+socket says jobs were queued (:mod:`worker.dispatch.wake_ups`), or for ``poll_seconds``
+at most (the safety net); without a wake-up socket it claims every ``poll_seconds``.
 A pool process's entry point is :mod:`worker.pool_process`.
 """
 
@@ -25,6 +28,7 @@ from pydantic import ValidationError
 
 from worker.attempt_guard import AttemptGuard
 from worker.contract import JobStatus
+from worker.dispatch.wake_ups import WakeUpListener
 from worker.errors import StoreUnavailable
 from worker.logs import log_context
 from worker.processes import ProcessRegistry
@@ -54,17 +58,23 @@ class WorkerLoop:
         prefer_cheap: bool = False,
         on_queued: Callable[[Sequence[str]], None] | None = None,
         commit_behind: bool = False,
+        wake_ups: WakeUpListener | None = None,
     ) -> None:
         self.settings = settings
         self.store = store
         self.registry = registry
         self.prefer_cheap = prefer_cheap
         #: Told the IDs of jobs this loop queued (a study's chunks, a study queued again
-        #: to assemble): a broker deployment sends them; the local pool polls instead.
+        #: to assemble): a broker deployment sends them; the local pool wakes its idle
+        #: processes.
         self.on_queued = on_queued
+        #: Where an idle local pool process sleeps until jobs are queued (None: it
+        #: claims every ``poll_seconds``).
+        self.wake_ups = wake_ups
         self.worker_id = worker_id_for(os.getpid())
         self._stop = threading.Event()
         self._next_reap = 0.0
+        self._next_beat = 0.0
         self._guard = AttemptGuard(store, settings, self.worker_id)
         #: With ``commit_behind``, a job's outcome is committed on a thread of its own
         #: while the loop's caller goes on (a Celery delivery returns, so the broker's
@@ -112,12 +122,15 @@ class WorkerLoop:
         return claim
 
     def request_stop(self) -> None:
+        """Stop after the current job, or at once when idle (safe in a signal handler)."""
         self._stop.set()
+        if self.wake_ups is not None:
+            self.wake_ups.interrupt()
 
     def run(self, parent_pid: int | None = None) -> None:
         if not self._register():
             return
-        last_beat = time.monotonic()
+        self._next_beat = time.monotonic() + self.settings.heartbeat_seconds
         trouble = _Backoff()
         try:
             while not self._stop.is_set():
@@ -125,22 +138,60 @@ class WorkerLoop:
                     log.warning("parent process went away; worker %s exits", self.worker_id)
                     return
                 try:
-                    if time.monotonic() - last_beat >= self.settings.heartbeat_seconds:
-                        self.store.worker_heartbeat(self.worker_id)
-                        last_beat = time.monotonic()
-                    claim = self.claim()
+                    self._beat_if_due()
+                    claim = self._claim_or_sleep()
                 except StoreUnavailable as exc:
                     log.warning("worker %s: the store is unavailable (%s)", self.worker_id, exc)
                     self._stop.wait(trouble.next_pause())
                     continue
                 trouble.reset()
-                if claim is None:
-                    self._stop.wait(self.settings.poll_seconds)
-                    continue
-                self.execute(claim)
+                if claim is not None:
+                    self.execute(claim)
         finally:
             with contextlib.suppress(StoreUnavailable):
                 self.store.unregister_worker(self.worker_id)
+
+    def _beat_if_due(self) -> None:
+        """Tell the store this worker is alive, every ``heartbeat_seconds`` (readiness
+        and synchronous answers count the workers that did lately)."""
+        now = time.monotonic()
+        if now >= self._next_beat:
+            self.store.worker_heartbeat(self.worker_id)
+            self._next_beat = now + self.settings.heartbeat_seconds
+
+    def _claim_or_sleep(self) -> Claim | None:
+        """A claim; or, with nothing to claim, a sleep until a wake-up hint comes (at
+        most ``poll_seconds``) and None.  Hints that came in since the claim ask for
+        one more (they may announce jobs queued after it); a claim made on hints that
+        announced more jobs passes the rest on, to wake the next idle process."""
+        hints = self.wake_ups
+        claim = self.claim()
+        if claim is None and hints is not None and hints.take():
+            claim = self.claim()
+        if claim is not None:
+            if hints is not None:
+                hints.pass_on()
+            return claim
+        if hints is not None:
+            hints.drop()  # the jobs they announced are taken
+        self._sleep(time.monotonic() + self.settings.poll_seconds)
+        return None
+
+    def _sleep(self, until: float) -> None:
+        """Sleep until a wake-up hint comes, a stop is asked for, or the monotonic time
+        ``until``; the worker's heartbeats go on meanwhile."""
+        while not self._stop.is_set():
+            self._beat_if_due()
+            now = time.monotonic()
+            if now >= until:
+                return
+            left = min(until, self._next_beat) - now
+            if self.wake_ups is None:
+                self._stop.wait(left)
+            else:
+                self.wake_ups.wait(left)
+                if self.wake_ups.held:
+                    return
 
     def _register(self) -> bool:
         """Register with the store, waiting out store trouble; False if told to stop."""
