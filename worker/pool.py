@@ -88,7 +88,13 @@ class WorkerPool:
         self._monitor.start()
         self._retention = RetentionSweeper(self.settings, self.store)
         self._retention.start()
-        log.info("worker pool started with %d process(es)", len(self._slots))
+        log.info(
+            "worker pool started with %d process(es); idle, they wake on %s or look for work "
+            "every %g s",
+            len(self._slots),
+            "nothing" if self._wake_ups is None else self._wake_ups.path,
+            self.settings.poll_seconds,
+        )
 
     def stop(self, grace_s: float = 5.0) -> None:
         self._stopping.set()
