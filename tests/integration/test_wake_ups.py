@@ -4,12 +4,14 @@ on its pool's wake-up socket, not found by polling (worker.dispatch.wake_ups).
 Every deployment here polls only every 30 s (``DEXLAB_POLL_SECONDS``), so a job that
 starts sooner was started by a wake-up: from the API (its pool in the API's process,
 or two `dexlab worker` pools of their own), from the process that split a study into
-chunks, and from the one that ended a study's last chunk.  A lost wake-up still costs
-no more than the poll interval.
+chunks, from the one that ended a study's last chunk, and from a supervisor whose
+process died holding a job.  A lost wake-up still costs no more than the poll interval.
 """
 
 from __future__ import annotations
 
+import os
+import signal
 import statistics
 import time
 from datetime import datetime
@@ -18,8 +20,9 @@ from typing import Any
 
 import pytest
 
-from tests.integration.servers import deployment, wait_terminal
+from tests.integration.servers import deployment, wait_for, wait_terminal
 from tests.integration.test_design_study import STUDY
+from tests.integration.test_server import MAP_URL, long_job, pid_of, running_with_progress
 from worker.dispatch.wake_ups import wake_up_dir
 
 pytestmark = [pytest.mark.integration, pytest.mark.slow]
@@ -93,6 +96,25 @@ def test_a_studys_chunks_wake_every_idle_process_and_its_end_wakes_the_assembly(
         assert max(first_starts.values()) < 1.0, first_starts
         last_chunk_end = max(seconds(c["finished"]) for c in chunks)
         assert seconds(done["finished"]) - last_chunk_end < 3.0, (done, last_chunk_end)
+
+
+def test_the_job_of_a_killed_process_is_retried_at_once_by_an_idle_one(tmp_path: Path) -> None:
+    """The supervisor requeues the dead process's job and wakes the idle process,
+    which takes it before the dead one's replacement has even started."""
+    with deployment("embedded", tmp_path, workers=2, env=LONG_POLL) as dep:
+        client = dep.client
+        job_id = client.post(MAP_URL, json={"inputs": long_job(3)}).json()["jobID"]
+        victim = pid_of(wait_for(client, job_id, running_with_progress(2), timeout=60))
+        quick = client.post(FOURBAR_URL, json=trivial(0)).json()["jobID"]
+        idle = pid_of(wait_terminal(client, quick, timeout=10))
+        assert idle != victim
+        time.sleep(0.5)  # asleep again
+        os.kill(victim, signal.SIGKILL)
+        retried = wait_for(
+            client, job_id, lambda d: d["attempts"] == 2 and d["status"] == "running", timeout=20
+        )
+        assert pid_of(retried) == idle, retried
+        client.delete(f"/v1/jobs/{job_id}")
 
 
 def test_a_lost_wake_up_costs_a_poll_interval_at_most(tmp_path: Path) -> None:
