@@ -7,8 +7,7 @@ process (``os._exit``) when the job is dismissed, when another attempt took the 
 over, or when the job's time limit passes (after recording the failure); the pool then
 starts a fresh process in its place.
 With nothing to claim, a local pool's process sleeps until a hint on its pool's wake-up
-socket says jobs were queued (:mod:`worker.dispatch.wake_ups`), or for ``poll_seconds``
-at most (the safety net); without a wake-up socket it claims every ``poll_seconds``.
+socket says jobs were queued, or ``poll_seconds`` at most (:mod:`worker.idle`).
 A pool process's entry point is :mod:`worker.pool_process`.
 """
 
@@ -30,6 +29,7 @@ from worker.attempt_guard import AttemptGuard
 from worker.contract import JobStatus
 from worker.dispatch.wake_ups import WakeUpListener
 from worker.errors import StoreUnavailable
+from worker.idle import IdleWait
 from worker.logs import log_context
 from worker.processes import ProcessRegistry
 from worker.progress import StoreProgress
@@ -68,13 +68,12 @@ class WorkerLoop:
         #: to assemble): a broker deployment sends them; the local pool wakes its idle
         #: processes.
         self.on_queued = on_queued
-        #: Where an idle local pool process sleeps until jobs are queued (None: it
-        #: claims every ``poll_seconds``).
-        self.wake_ups = wake_ups
         self.worker_id = worker_id_for(os.getpid())
         self._stop = threading.Event()
         self._next_reap = 0.0
-        self._next_beat = 0.0
+        #: Between jobs: sleeps on the pool's ``wake_ups`` (None: claims every
+        #: ``poll_seconds``), beating meanwhile.
+        self._idle = IdleWait(settings, store, self.worker_id, self._stop, wake_ups)
         self._guard = AttemptGuard(store, settings, self.worker_id)
         #: With ``commit_behind``, a job's outcome is committed on a thread of its own
         #: while the loop's caller goes on (a Celery delivery returns, so the broker's
@@ -124,13 +123,11 @@ class WorkerLoop:
     def request_stop(self) -> None:
         """Stop after the current job, or at once when idle (safe in a signal handler)."""
         self._stop.set()
-        if self.wake_ups is not None:
-            self.wake_ups.interrupt()
+        self._idle.interrupt()
 
     def run(self, parent_pid: int | None = None) -> None:
         if not self._register():
             return
-        self._next_beat = time.monotonic() + self.settings.heartbeat_seconds
         trouble = _Backoff()
         try:
             while not self._stop.is_set():
@@ -138,8 +135,8 @@ class WorkerLoop:
                     log.warning("parent process went away; worker %s exits", self.worker_id)
                     return
                 try:
-                    self._beat_if_due()
-                    claim = self._claim_or_sleep()
+                    self._idle.beat_if_due()
+                    claim = self._idle.claim_or_sleep(self.claim)
                 except StoreUnavailable as exc:
                     log.warning("worker %s: the store is unavailable (%s)", self.worker_id, exc)
                     self._stop.wait(trouble.next_pause())
@@ -150,48 +147,6 @@ class WorkerLoop:
         finally:
             with contextlib.suppress(StoreUnavailable):
                 self.store.unregister_worker(self.worker_id)
-
-    def _beat_if_due(self) -> None:
-        """Tell the store this worker is alive, every ``heartbeat_seconds`` (readiness
-        and synchronous answers count the workers that did lately)."""
-        now = time.monotonic()
-        if now >= self._next_beat:
-            self.store.worker_heartbeat(self.worker_id)
-            self._next_beat = now + self.settings.heartbeat_seconds
-
-    def _claim_or_sleep(self) -> Claim | None:
-        """A claim; or, with nothing to claim, a sleep until a wake-up hint comes (at
-        most ``poll_seconds``) and None.  Hints that came in since the claim ask for
-        one more (they may announce jobs queued after it); a claim made on hints that
-        announced more jobs passes the rest on, to wake the next idle process."""
-        hints = self.wake_ups
-        claim = self.claim()
-        if claim is None and hints is not None and hints.take():
-            claim = self.claim()
-        if claim is not None:
-            if hints is not None:
-                hints.pass_on()
-            return claim
-        if hints is not None:
-            hints.drop()  # the jobs they announced are taken
-        self._sleep(time.monotonic() + self.settings.poll_seconds)
-        return None
-
-    def _sleep(self, until: float) -> None:
-        """Sleep until a wake-up hint comes, a stop is asked for, or the monotonic time
-        ``until``; the worker's heartbeats go on meanwhile."""
-        while not self._stop.is_set():
-            self._beat_if_due()
-            now = time.monotonic()
-            if now >= until:
-                return
-            left = min(until, self._next_beat) - now
-            if self.wake_ups is None:
-                self._stop.wait(left)
-            else:
-                self.wake_ups.wait(left)
-                if self.wake_ups.held:
-                    return
 
     def _register(self) -> bool:
         """Register with the store, waiting out store trouble; False if told to stop."""
