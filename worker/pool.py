@@ -8,6 +8,10 @@ SIGSTOPped, perhaps holding SQLite's write lock; :mod:`worker.liveness`) is kill
 A process that keeps dying at start-up (a broken store) is restarted after growing
 pauses (capped), and the log says why.
 
+The supervisor binds the pool's wake-up socket, which its idle processes sleep on
+(:mod:`worker.dispatch.wake_ups`), and wakes the pools when a dead process's jobs are
+queued for a retry.
+
 The process in slot 0 prefers cheap jobs (:mod:`worker.store.scheduling`), so small
 jobs are not starved by expensive ones; every process runs at a lower scheduling
 priority than the supervisor and the API (``DEXLAB_WORKER_NICE``).  The supervisor also
@@ -24,6 +28,7 @@ import time
 from dataclasses import dataclass, field
 from multiprocessing.process import BaseProcess
 
+from worker.dispatch.wake_ups import PoolWakeUps, WakeUpSender, wake_up_dir
 from worker.errors import StoreUnavailable
 from worker.liveness import FrozenWatch, LivenessBoard, frozen_after_s
 from worker.pool_process import EXIT_STARTUP, worker_main
@@ -69,9 +74,13 @@ class WorkerPool:
         self._stopping = threading.Event()
         self._monitor: threading.Thread | None = None
         self._retention: RetentionSweeper | None = None
+        self._wake_dir = wake_up_dir(settings.resolved_store_url())
+        self._wake_ups: PoolWakeUps | None = None
+        self._waker = WakeUpSender(self._wake_dir)
 
     # -- lifecycle ------------------------------------------------------------------
     def start(self) -> None:
+        self._wake_ups = PoolWakeUps.bind(self._wake_dir)
         with self._lock:
             for index in range(len(self._slots)):
                 self._spawn(index)
@@ -79,7 +88,13 @@ class WorkerPool:
         self._monitor.start()
         self._retention = RetentionSweeper(self.settings, self.store)
         self._retention.start()
-        log.info("worker pool started with %d process(es)", len(self._slots))
+        log.info(
+            "worker pool started with %d process(es); idle, they wake on %s or look for work "
+            "every %g s",
+            len(self._slots),
+            "nothing" if self._wake_ups is None else self._wake_ups.path,
+            self.settings.poll_seconds,
+        )
 
     def stop(self, grace_s: float = 5.0) -> None:
         self._stopping.set()
@@ -101,6 +116,10 @@ class WorkerPool:
                 self._release(worker_id_for(proc.pid) if proc.pid else None)
             for slot in self._slots:
                 slot.proc = None
+        if self._wake_ups is not None:
+            self._wake_ups.close()
+            self._wake_ups = None
+        self._waker.close()
         log.info("worker pool stopped")
 
     # -- state ----------------------------------------------------------------------
@@ -127,6 +146,7 @@ class WorkerPool:
                 (self._board, index),
                 logging.getLogger().getEffectiveLevel(),
                 index == 0,  # the slot that prefers cheap jobs
+                None if self._wake_ups is None else self._wake_ups.sock,
             ),
             name=f"dexlab-worker-{index}",
             daemon=False,
@@ -152,6 +172,7 @@ class WorkerPool:
             log.warning(
                 "worker %s died holding %d job(s); they will be retried", worker_id, expired
             )
+            self._waker.wake(expired)
         return True
 
     def _on_exit(self, index: int, slot: _Slot) -> None:

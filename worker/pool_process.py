@@ -5,7 +5,9 @@ Worker processes run at a lower scheduling priority than the API
 (:func:`lower_priority`), so requests stay quick while every core runs jobs.  A pool
 process beats in its slot of the supervisor's liveness board twice a second from a
 thread of its own, whatever the job does, so a frozen (e.g. SIGSTOPped) process is
-found and killed (:mod:`worker.liveness`).
+found and killed (:mod:`worker.liveness`).  Idle, it sleeps on its pool's wake-up
+socket, and it wakes the local pools itself when it queues jobs (a study's chunks, a
+study to assemble; :mod:`worker.dispatch.wake_ups`).
 """
 
 from __future__ import annotations
@@ -13,9 +15,11 @@ from __future__ import annotations
 import logging
 import os
 import signal
+import socket
 import sys
 from typing import Any
 
+from worker.dispatch.wake_ups import WakeUpListener, WakeUpSender, wake_up_dir
 from worker.liveness import LivenessBoard
 from worker.logs import configure_logging
 from worker.processes import worker_registry
@@ -54,11 +58,12 @@ def worker_main(
     liveness: tuple[LivenessBoard, int] | None = None,
     log_level: int = logging.INFO,
     prefer_cheap: bool = False,
+    wake_up_socket: socket.socket | None = None,
 ) -> None:
     """Entry point of a pool process (spawned): beat in its ``(board, slot)``, lower
     its priority, build resources, then loop (taking cheap jobs first with
-    ``prefer_cheap``).  It logs at its supervisor's ``log_level``, in
-    ``DEXLAB_LOG_FORMAT`` (inherited)."""
+    ``prefer_cheap``; idle, sleeping on the pool's ``wake_up_socket``).  It logs at its
+    supervisor's ``log_level``, in ``DEXLAB_LOG_FORMAT`` (inherited)."""
     configure_logging(level=log_level)
     if liveness is not None:
         board, slot = liveness
@@ -70,7 +75,15 @@ def worker_main(
     except Exception as exc:  # the supervisor backs off and says why
         log.error("worker process %d cannot open the job store: %s", os.getpid(), exc)
         sys.exit(EXIT_STARTUP)
-    loop = WorkerLoop(settings, store, worker_registry(), prefer_cheap=prefer_cheap)
+    sender = WakeUpSender(wake_up_dir(settings.resolved_store_url()))
+    loop = WorkerLoop(
+        settings,
+        store,
+        worker_registry(),
+        prefer_cheap=prefer_cheap,
+        on_queued=sender.wake_for,
+        wake_ups=None if wake_up_socket is None else WakeUpListener(wake_up_socket),
+    )
     signal.signal(signal.SIGTERM, lambda *_: loop.request_stop())
     signal.signal(signal.SIGINT, signal.SIG_IGN)  # the supervisor decides when we stop
     loop.run(parent_pid=parent_pid)

@@ -6,6 +6,8 @@ loop's guard thread (:mod:`worker.attempt_guard`) renews the lease.  It stops th
 process (``os._exit``) when the job is dismissed, when another attempt took the job
 over, or when the job's time limit passes (after recording the failure); the pool then
 starts a fresh process in its place.
+With nothing to claim, a local pool's process sleeps until a hint on its pool's wake-up
+socket says jobs were queued, or ``poll_seconds`` at most (:mod:`worker.idle`).
 A pool process's entry point is :mod:`worker.pool_process`.
 """
 
@@ -25,7 +27,9 @@ from pydantic import ValidationError
 
 from worker.attempt_guard import AttemptGuard
 from worker.contract import JobStatus
+from worker.dispatch.wake_ups import WakeUpListener
 from worker.errors import StoreUnavailable
+from worker.idle import IdleWait
 from worker.logs import log_context
 from worker.processes import ProcessRegistry
 from worker.progress import StoreProgress
@@ -54,17 +58,22 @@ class WorkerLoop:
         prefer_cheap: bool = False,
         on_queued: Callable[[Sequence[str]], None] | None = None,
         commit_behind: bool = False,
+        wake_ups: WakeUpListener | None = None,
     ) -> None:
         self.settings = settings
         self.store = store
         self.registry = registry
         self.prefer_cheap = prefer_cheap
         #: Told the IDs of jobs this loop queued (a study's chunks, a study queued again
-        #: to assemble): a broker deployment sends them; the local pool polls instead.
+        #: to assemble): a broker deployment sends them; the local pool wakes its idle
+        #: processes.
         self.on_queued = on_queued
         self.worker_id = worker_id_for(os.getpid())
         self._stop = threading.Event()
         self._next_reap = 0.0
+        #: Between jobs: sleeps on the pool's ``wake_ups`` (None: claims every
+        #: ``poll_seconds``), beating meanwhile.
+        self._idle = IdleWait(settings, store, self.worker_id, self._stop, wake_ups)
         self._guard = AttemptGuard(store, settings, self.worker_id)
         #: With ``commit_behind``, a job's outcome is committed on a thread of its own
         #: while the loop's caller goes on (a Celery delivery returns, so the broker's
@@ -112,12 +121,13 @@ class WorkerLoop:
         return claim
 
     def request_stop(self) -> None:
+        """Stop after the current job, or at once when idle (safe in a signal handler)."""
         self._stop.set()
+        self._idle.interrupt()
 
     def run(self, parent_pid: int | None = None) -> None:
         if not self._register():
             return
-        last_beat = time.monotonic()
         trouble = _Backoff()
         try:
             while not self._stop.is_set():
@@ -125,19 +135,15 @@ class WorkerLoop:
                     log.warning("parent process went away; worker %s exits", self.worker_id)
                     return
                 try:
-                    if time.monotonic() - last_beat >= self.settings.heartbeat_seconds:
-                        self.store.worker_heartbeat(self.worker_id)
-                        last_beat = time.monotonic()
-                    claim = self.claim()
+                    self._idle.beat_if_due()
+                    claim = self._idle.claim_or_sleep(self.claim)
                 except StoreUnavailable as exc:
                     log.warning("worker %s: the store is unavailable (%s)", self.worker_id, exc)
                     self._stop.wait(trouble.next_pause())
                     continue
                 trouble.reset()
-                if claim is None:
-                    self._stop.wait(self.settings.poll_seconds)
-                    continue
-                self.execute(claim)
+                if claim is not None:
+                    self.execute(claim)
         finally:
             with contextlib.suppress(StoreUnavailable):
                 self.store.unregister_worker(self.worker_id)

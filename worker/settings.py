@@ -41,7 +41,12 @@ class WorkerSettings(BaseSettings):
         description="How long a store call retries a locked or unreachable store before "
         "it gives up (the API then answers 503 with Retry-After).",
     )
-    poll_seconds: float = Field(0.2, gt=0, description="How often an idle worker looks for work.")
+    poll_seconds: float = Field(
+        0.2,
+        gt=0,
+        description="How often an idle local pool process looks for work by itself: the "
+        "safety net, for it is woken when a job is queued.",
+    )
     max_attempts: int = Field(3, ge=1, le=20, description="Attempts before a lost job fails.")
     max_time_limit_s: float | None = Field(
         None, gt=0, description="Cap on every process's time limit (seconds)."

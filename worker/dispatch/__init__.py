@@ -1,6 +1,8 @@
 """How a committed job reaches a worker process.
 
-- no broker: the local pool's processes poll the store (:class:`LocalDispatch`);
+- no broker: the local pool's processes claim it from the store; an idle one is woken
+  by a hint on its pool's wake-up socket (:class:`LocalDispatch`,
+  :mod:`worker.dispatch.wake_ups`), and polls the store as a safety net;
 - ``broker_url`` set: the job ID is sent to Celery (:class:`CeleryDispatch`), and a
   :class:`Sweeper` re-sends jobs whose worker died or whose message was lost.
 
@@ -11,6 +13,7 @@ from __future__ import annotations
 
 from typing import Protocol
 
+from worker.dispatch.wake_ups import WakeUpSender, wake_up_dir
 from worker.settings import WorkerSettings
 from worker.store.base import JobStore
 
@@ -32,22 +35,26 @@ class Dispatcher(Protocol):
 
 
 class LocalDispatch:
-    """The local pool polls the store, so there is nothing to send."""
+    """Wakes an idle process of each local pool of the store on this machine (the
+    processes claim the job from the store; a lost hint costs a poll interval)."""
+
+    def __init__(self, sender: WakeUpSender) -> None:
+        self.sender = sender
 
     def dispatch(self, job_id: str, time_limit_s: float) -> None:
-        return None
+        self.sender.wake(1)
 
     def waiting_messages(self) -> int | None:
         return None
 
     def close(self) -> None:
-        return None
+        self.sender.close()
 
 
 def make_dispatcher(settings: WorkerSettings, store: JobStore) -> Dispatcher:
     """The dispatcher the settings call for."""
     if not settings.broker_url:
-        return LocalDispatch()
+        return LocalDispatch(WakeUpSender(wake_up_dir(settings.resolved_store_url())))
     from worker.dispatch.celery.dispatch import CeleryDispatch
 
     return CeleryDispatch(settings, store)

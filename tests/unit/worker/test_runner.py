@@ -1,12 +1,15 @@
 """The worker loop, run in-process against a real SQLite store with a toy process.
 
 (Fault behaviour - killed processes, time limits, dismissal - is tested against the
-real pool in tests/integration.)
+real pool in tests/integration; so are wake-ups across processes.)
 """
 
 from __future__ import annotations
 
+import threading
 import time
+from collections.abc import Iterator
+from contextlib import contextmanager
 from pathlib import Path
 from typing import Any
 
@@ -14,6 +17,7 @@ import pytest
 from pydantic import BaseModel, ConfigDict
 
 from worker.contract import Artifact, JobContext, JobOutcome, JobStatus
+from worker.dispatch.wake_ups import PoolWakeUps, WakeUpListener, WakeUpSender
 from worker.processes import ProcessDefinition, ProcessRegistry
 from worker.runner import WorkerLoop
 from worker.settings import WorkerSettings
@@ -153,3 +157,92 @@ def test_inputs_that_no_longer_validate_fail_with_reason(store: JobStore) -> Non
     job = store.get_job(job_id)
     assert job is not None and job.status is JobStatus.FAILED
     assert job.error is not None and "ValidationError" in job.error["detail"]
+
+
+# -- idle: wake-up hints, the safety-net poll, heartbeats -------------------------------
+
+
+@contextmanager
+def running(loop: WorkerLoop) -> Iterator[threading.Thread]:
+    """``loop.run()`` on a thread of its own, stopped (and joined) afterwards."""
+    thread = threading.Thread(target=loop.run, daemon=True)
+    thread.start()
+    try:
+        yield thread
+    finally:
+        loop.request_stop()
+        thread.join(timeout=10)
+        assert not thread.is_alive()
+
+
+def started_after_s(store: JobStore, job_id: str, timeout_s: float = 10.0) -> float:
+    """Seconds from the job's creation to its start, once it ended."""
+    deadline = time.monotonic() + timeout_s
+    while time.monotonic() < deadline:
+        job = store.get_job(job_id)
+        assert job is not None
+        if job.status is JobStatus.SUCCESSFUL:
+            assert job.started is not None
+            return (job.started - job.created).total_seconds()
+        time.sleep(0.01)
+    raise AssertionError(f"job {job_id} did not end in {timeout_s} s")
+
+
+@pytest.fixture
+def wake_ups(tmp_path: Path) -> Iterator[PoolWakeUps]:
+    bound = PoolWakeUps.bind(tmp_path / "wake")
+    assert bound is not None
+    yield bound
+    bound.close()
+
+
+def test_an_idle_loop_starts_a_hinted_job_at_once_and_polls_without_one(
+    store: JobStore, wake_ups: PoolWakeUps
+) -> None:
+    settings = WorkerSettings(workers=1, poll_seconds=1.0)
+    loop = WorkerLoop(settings, store, registry(), wake_ups=WakeUpListener(wake_ups.sock))
+    sender = WakeUpSender(wake_ups.path.parent)
+    try:
+        with running(loop):
+            time.sleep(0.3)  # asleep, its first claim found nothing
+            delays = []
+            for x in range(5):
+                job_id = submit(store, "square", {"x": x})
+                sender.wake(1)
+                delays.append(started_after_s(store, job_id))
+            assert sorted(delays)[2] < 0.1 and max(delays) < 0.5, delays
+            unhinted = [submit(store, "square", {"x": 7})]  # a lost hint: the poll finds it
+            assert started_after_s(store, unhinted[0]) < 1.0 + 0.5
+    finally:
+        sender.close()
+
+
+def test_a_stop_wakes_a_loop_sleeping_for_a_long_poll(
+    store: JobStore, wake_ups: PoolWakeUps
+) -> None:
+    settings = WorkerSettings(workers=1, poll_seconds=60.0)
+    loop = WorkerLoop(settings, store, registry(), wake_ups=WakeUpListener(wake_ups.sock))
+    with running(loop) as thread:
+        time.sleep(0.3)
+        stop = time.monotonic()
+        loop.request_stop()
+        thread.join(timeout=10)
+        assert time.monotonic() - stop < 1.0
+
+
+@pytest.mark.parametrize("hinted", [True, False])
+def test_an_idle_loop_beats_while_it_sleeps_for_a_long_poll(
+    store: JobStore, wake_ups: PoolWakeUps, hinted: bool
+) -> None:
+    """Readiness and synchronous answers count the workers that beat lately: a long
+    safety-net poll must not make an idle worker look dead."""
+    settings = WorkerSettings(workers=1, poll_seconds=60.0, heartbeat_seconds=0.2)
+    if hinted:
+        loop = WorkerLoop(settings, store, registry(), wake_ups=WakeUpListener(wake_ups.sock))
+    else:
+        loop = WorkerLoop(settings, store, registry())
+    with running(loop):
+        time.sleep(1.0)
+        assert [w.worker_id for w in store.live_workers(within_s=0.6)] == [loop.worker_id]
+        time.sleep(0.6)
+        assert [w.worker_id for w in store.live_workers(within_s=0.6)] == [loop.worker_id]

@@ -29,7 +29,9 @@ class RecordingDispatch:
 
 def test_no_broker_means_the_local_pool(tmp_path: Path) -> None:
     store = open_store(f"sqlite:///{tmp_path / 'j.db'}")
-    assert isinstance(make_dispatcher(WorkerSettings(), store), LocalDispatch)
+    dispatcher = make_dispatcher(WorkerSettings(), store)
+    assert isinstance(dispatcher, LocalDispatch)
+    dispatcher.close()
 
 
 def test_broker_url_means_celery_without_connecting(tmp_path: Path) -> None:
