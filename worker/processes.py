@@ -17,6 +17,7 @@ from pydantic import BaseModel
 
 from worker.contract import ChildEnd, JobContext, JobOutcome
 from worker.result_paths import ResultPathInfo
+from worker.study_kernels import StudyKernel
 
 __all__ = [
     "ChildResults",
@@ -27,6 +28,7 @@ __all__ = [
     "ProcessFile",
     "ProcessRegistry",
     "ResultPathInfo",
+    "StudyKernel",
     "data_files",
     "default_registry",
     "figure_files",
@@ -148,6 +150,9 @@ class ProcessDefinition:
     #: Every numeric place of the result, with its unit, symbol and meaning
     #: (:mod:`worker.result_paths`); checked against the worked examples by the tests.
     result_paths: tuple[ResultPathInfo, ...] = ()
+    #: The batched evaluation a design study uses for the result paths it covers
+    #: (:mod:`worker.study_kernels`); None: studies of this process run per design.
+    study_kernel: StudyKernel | None = None
 
     @cached_property
     def inputs_schema(self) -> dict[str, Any]:
@@ -155,7 +160,9 @@ class ProcessDefinition:
         return self.inputs_model.model_json_schema()
 
     def describe(self) -> dict[str, Any]:
-        """The process description served at ``GET /v1/processes/{id}``."""
+        """The process description served at ``GET /v1/processes/{id}``: each result
+        path a study kernel covers says ``"kernel": true``."""
+        covered = set(self.study_kernel.covers) if self.study_kernel is not None else set()
         return {
             "id": self.id,
             "title": self.title,
@@ -168,7 +175,9 @@ class ProcessDefinition:
             ),
             "inputs": copy.deepcopy(self.inputs_schema),
             "outputs": dict(self.outputs),
-            "result_paths": [entry.describe() for entry in self.result_paths],
+            "result_paths": [
+                entry.describe(kernel=entry.path in covered) for entry in self.result_paths
+            ],
             "examples": [
                 {"title": ex.title, "description": ex.description, "inputs": dict(ex.inputs)}
                 for ex in self.examples
