@@ -20,6 +20,7 @@ from worker.result_paths import ResultPathInfo
 from worker.study_kernels import StudyKernel
 
 __all__ = [
+    "ChildFiles",
     "ChildResults",
     "FanOutSteps",
     "PaperPoint",
@@ -82,6 +83,9 @@ def data_files(stem: str, title: str) -> tuple[ProcessFile, ProcessFile]:
 
 #: A fan-out parent's children as it assembles them: how each ended, and its result.
 ChildResults = Iterable[tuple[ChildEnd, Mapping[str, Any] | None]]
+#: A child's artifact as its parent assembles it: (child job ID, name) -> its bytes, or
+#: None if the child has no such file (one child's file at a time: a study streams them).
+ChildFiles = Callable[[str, str], bytes | None]
 
 
 @dataclass(frozen=True)
@@ -101,12 +105,13 @@ class FanOutSteps:
     """A process that fans out over the workers (``design-study``): its first attempt
     ``split``s the validated inputs into the inputs of ``child_process`` jobs, which run
     like any job; once they all ended, ``assemble`` builds the outcome from them in
-    order (worker.store.fan_out).  ``allow_partial``: whether a failed child is
-    reported as missing instead of failing the parent."""
+    order, reading their files through a :data:`ChildFiles` (worker.store.fan_out).
+    ``allow_partial``: whether a failed child is reported as missing instead of failing
+    the parent."""
 
     child_process: str
     split: Callable[[Any], Sequence[Mapping[str, Any]]]
-    assemble: Callable[[Any, ChildResults, JobContext], JobOutcome]
+    assemble: Callable[[Any, ChildResults, ChildFiles, JobContext], JobOutcome]
     allow_partial: Callable[[Any], bool] = lambda inputs: False
 
 
