@@ -380,7 +380,7 @@ STUDY = ProcessDefinition(
         "a second each that run on every worker at once; a design the process refuses, or "
         "that has no value for an objective, is kept as infeasible with its reason code. "
         "Where the process has a study kernel covering every objective and varied input "
-        "(its result_paths say \"kernel\": true), the designs are evaluated many at once "
+        '(its result_paths say "kernel": true), the designs are evaluated many at once '
         "(engine 'batched', the same numbers); else by running the process per design. "
         "Cost: designs x a design's cost (the kernel's, or the first design's as a job), in "
         f"millionths of the process's cost limit; at most {STUDY_JOBS_LIMIT} jobs' worth."
