@@ -36,8 +36,8 @@ steps as ``worker/families/spherical_parallel/study.py``):
    ``request.varied``) and returns a :class:`KernelBlock`: per wanted path an array
    ``(m, *L)``, one axis per ``[]`` of the path (a list has the same length in every
    design; NaN where the process reports null or nothing), and per design the refusal
-   the process's validation would make (``refused`` indexes ``refusals``: the first
-   field the process names, and a message), -1 for a design it accepts.  Only
+   the process's validation would make (``refused`` indexes ``refusals``: where the
+   process locates its first error, and a message), -1 for a design it accepts.  Only
    refusals that depend on the varied values are the kernel's: the study refuses
    nothing else per design (the template validated the rest; a cost above the
    process's limit is the study's).  A kernel may skip a refusal check whose outcome
@@ -83,10 +83,12 @@ def in_study_template(context: Any) -> bool:
 
 @dataclass(frozen=True)
 class Refusal:
-    """Why the process refuses a design: the first field its validation names (as a
-    422 names it: ``inputs.alpha1_deg``, ``inputs.chains[3].loops[0]``) and a message."""
+    """Why the process refuses a design: where its validation locates the first error
+    (pydantic's location in the inputs, tags of tagged unions included:
+    ``("alpha1_deg",)``, ``("chains", 3, "loops", 0)``; a 422 shows it as
+    ``inputs.chains[3].loops[0]``) and a message."""
 
-    field: str
+    loc: tuple[str | int, ...]
     message: str
 
 

@@ -24,6 +24,7 @@ from worker.studies.paths import ResultPath, parse_result_path
 from worker.studies.rows import FEASIBLE, NO_VALUE, REFUSED, ChunkRows, ReasonTally
 from worker.studies.spec import StudySpec
 from worker.study_kernels import KernelBlock
+from worker.submission import field_path
 
 __all__ = ["BATCH", "evaluate_batched", "objective_column"]
 
@@ -117,12 +118,13 @@ def evaluate_batched(
         for k, refusal in enumerate(block.refusals):
             rows = np.flatnonzero(refused == k)
             if rows.size:
-                if refusal.field not in field_names:
-                    field_names.append(refusal.field)
+                field = field_path(("inputs", *refusal.loc))
+                if field not in field_names:
+                    field_names.append(field)
                 codes[first + rows] = REFUSED
-                fields[first + rows] = field_names.index(refusal.field)
-                tally.add(REFUSED, refusal.field, f"refused: Invalid value for "
-                          f"'{refusal.field}': {refusal.message}", int(rows.size))  # fmt: skip
+                fields[first + rows] = field_names.index(field)
+                tally.add(REFUSED, field, f"refused: Invalid value for '{field}': "
+                          f"{refusal.message}", int(rows.size))  # fmt: skip
         accepted = refused < 0
         if over_limit and accepted.any():
             if "inputs" not in field_names:

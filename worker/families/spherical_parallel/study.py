@@ -143,7 +143,7 @@ class _Plan:
                 hit = bad & (refused < 0)
                 if hit.any():
                     refused[hit] = len(refusals)
-                    refusals.append(Refusal(f"inputs.{name}", message))
+                    refusals.append(Refusal((name,), message))
         return refused, tuple(refusals)
 
 

@@ -40,7 +40,7 @@ _INDEX_NAMES = (
     "max_inverse_condition", "min_abs_det_a",
 )  # fmt: skip
 _UNREACHABLE = Refusal(
-    "inputs.workspace",
+    ("workspace",),
     "the design cannot reach the prescribed workspace at all: its legs close (eq 12) at "
     "none of the workspace's orientations",
 )
