@@ -154,7 +154,8 @@ def evaluate_block(plan: _Plan, values: FloatArray) -> KernelBlock:
     # A design with a value for every path read may still be refused for its reach.
     candidates = np.ones(len(valid), dtype=bool)
     for column in out.values():
-        candidates &= np.isfinite(column[valid].reshape(len(valid), -1)).all(axis=1)
+        width = int(np.prod(column.shape[1:]))
+        candidates &= np.isfinite(column[valid].reshape(len(valid), width)).all(axis=1)
     check = candidates & ~known
     if check.any():
         reached = reaching(angles[check], context.grids)
