@@ -11,6 +11,7 @@ agree design by design. Angles are in radians.
 
 from __future__ import annotations
 
+from collections.abc import Iterator
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -37,7 +38,8 @@ REACH_GRID_SIZES = (24 * 13 * 72, 144, 48 * 31 * 144)
 
 @dataclass(frozen=True, eq=False)
 class ReachGrids:
-    """The three grids of one workspace, each built when first looked at."""
+    """The three grids of one workspace: the first two built when first looked at and
+    kept, the dense one looked at piece by piece (its terms whole would take 30 MB)."""
 
     ws: Workspace
     _built: dict[int, SampleSet] = field(default_factory=dict, repr=False)
@@ -46,30 +48,33 @@ class ReachGrids:
         return 3
 
     def grid(self, k: int) -> SampleSet:
-        """Grid ``k``: 0 the boundary grid, 1 the default samples, 2 the dense grid."""
+        """Grid 0 (the boundary grid) or 1 (the default samples), kept."""
         if k not in self._built:
-            if k == 0:
-                points = boundary_grid(self.ws)
-            elif k == 1:
-                points = orientation_samples(self.ws)[0]
-            else:
-                points = boundary_grid(self.ws, *DENSE_REACH_GRID)
+            points = boundary_grid(self.ws) if k == 0 else orientation_samples(self.ws)[0]
             self._built[k] = SampleSet.from_samples(points, "ReachGrids")
         return self._built[k]
 
+    def pieces(self, k: int) -> Iterator[FloatArray]:
+        """Grid ``k``'s frame terms, :data:`TILE_POSES` orientations at a time."""
+        if k < 2:
+            terms = self.grid(k).frame_terms
+            for start in range(0, terms.shape[-1], TILE_POSES):
+                yield terms[..., start : start + TILE_POSES]
+            return
+        points = boundary_grid(self.ws, *DENSE_REACH_GRID)
+        for start in range(0, len(points), TILE_POSES):
+            yield SampleSet.from_samples(points[start : start + TILE_POSES]).frame_terms
 
-def _reaches_on(frame_terms: FloatArray, angles: FloatArray) -> BoolArray:
+
+def _reaches_on(pieces: Iterator[FloatArray], angles: FloatArray) -> BoolArray:
     """(m,) whether each design closes somewhere on one grid, looked at in pieces; a
     design stops being looked at once it closes."""
     reached = np.zeros(len(angles), dtype=bool)
-    n = frame_terms.shape[-1]
-    piece = min(n, TILE_POSES)
-    designs = max(1, TILE_POSES // piece)
-    for start in range(0, n, piece):
+    for terms in pieces:
         open_ = np.flatnonzero(~reached)
         if open_.size == 0:
             break
-        terms = frame_terms[..., start : start + piece]
+        designs = max(1, TILE_POSES // terms.shape[-1])
         for first in range(0, open_.size, designs):
             rows = open_[first : first + designs]
             closes = closing_orientations(terms, design_trig(angles[rows])).any(axis=-1)
@@ -87,5 +92,5 @@ def reaching(angles: FloatArray, grids: ReachGrids, known: BoolArray | None = No
         open_ = np.flatnonzero(~reached)
         if open_.size == 0:
             break
-        reached[open_] = _reaches_on(grids.grid(k).frame_terms, arr[open_])
+        reached[open_] = _reaches_on(grids.pieces(k), arr[open_])
     return reached
