@@ -28,12 +28,14 @@ FOURBAR_COVERS = (
     "lengths[]", "ground", "links[].index", "links[].length", "criterion.shortest",
     "criterion.longest", "criterion.s_plus_l", "criterion.p_plus_q", "criterion.margin",
 )  # fmt: skip
-#: Seconds per unit of chain-parallelism's cost (a link x loop) for one design, batched.
-CHAIN_SECONDS_PER_COST = 2e-6
-#: A batched four-bar's share of a job's cost (one four-bar): about 3 µs of work where
-#: a job of the process takes about 3 ms, and the seconds per unit of that cost.
+#: Seconds per unit of chain-parallelism's cost (a link x loop) for one design, batched
+#: (Fig 2's five quadrangles, 20 units: about 11 µs a design on the 2-core test machine).
+CHAIN_SECONDS_PER_COST = 5e-7
+#: A batched four-bar's price in the process's cost unit (one four-bar, a job's whole
+#: cost, which pays for its figure: about 0.1 s): about 4 µs of work, so a thousandth is
+#: generous; and the seconds per unit of that price.
 FOURBAR_KERNEL_COST = 1e-3
-FOURBAR_SECONDS_PER_COST = 3e-3
+FOURBAR_SECONDS_PER_COST = 4e-3
 
 
 def _prepare_chains(request: KernelRequest) -> KernelPlan:

@@ -60,9 +60,9 @@ COVERS = (
     *(f"indices.{name}" for name in (*_INDICES, "samples", "real_samples", "branch")),
     *_MINIMUM,
 )
-#: Seconds per pose evaluation per design, batched (about 0.4 µs on the 2-core test
-#: machine at 144 samples; bench/design_study.py measures it).
-SECONDS_PER_POSE = 4e-7
+#: Seconds per pose evaluation per design, batched (about 0.2 µs on the 2-core test
+#: machine at 144 samples, 26 µs a design; bench/design_study.py measures it).
+SECONDS_PER_POSE = 2e-7
 #: Orientations the reach check may look at before it refuses a design, and its grid of
 #: the default samples.
 REACH_COST = 24 * 13 * 72 + 144 + 48 * 31 * 144
