@@ -20,7 +20,6 @@ grid) is finite; a design some objective has no value for is infeasible either w
 
 from __future__ import annotations
 
-import math
 from collections.abc import Mapping
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
@@ -35,7 +34,7 @@ from worker.study_kernels import KernelBlock, KernelRequest, Refusal, StudyKerne
 if TYPE_CHECKING:
     from worker.families.spherical_parallel.specs import ConditioningMapSpec
 
-__all__ = ["CONDITIONING_MAP_KERNEL"]
+__all__ = ["CONDITIONING_MAP_KERNEL", "SpmPlan"]
 
 FloatArray = NDArray[np.float64]
 
@@ -81,14 +80,8 @@ def _walk(document: Any, path: str) -> FloatArray:
     return np.asarray(node, dtype=np.float64)
 
 
-def _degrees_echo(values: FloatArray) -> FloatArray:
-    """Angles as the result reports them: deg -> rad -> deg, rounded to 1e-10 deg."""
-    shown = [round(math.degrees(math.radians(v)), 10) for v in values.tolist()]
-    return np.asarray(shown, dtype=np.float64)
-
-
 @dataclass(frozen=True, eq=False)
-class _Plan:
+class SpmPlan:
     """One study's designs over one template (see the module doc)."""
 
     template: ConditioningMapSpec
@@ -147,7 +140,7 @@ class _Plan:
         return refused, tuple(refusals)
 
 
-def _prepare(request: KernelRequest) -> _Plan:
+def _prepare(request: KernelRequest) -> SpmPlan:
     from worker.families.spherical_parallel.jobs.workspace_sampling import (
         sampling_entry,
         workspace_entry,
@@ -168,7 +161,7 @@ def _prepare(request: KernelRequest) -> _Plan:
         for path in (*_ECHOES, "workspace_minimum.grid_points")
         if path in request.wanted
     }
-    return _Plan(template, columns, request.wanted, constants, context)
+    return SpmPlan(template, columns, request.wanted, constants, context)
 
 
 CONDITIONING_MAP_KERNEL = StudyKernel(

@@ -30,11 +30,12 @@ from worker.study_kernels import KernelBlock, Refusal
 
 if TYPE_CHECKING:
     from worker.families.spherical_parallel.specs import ConditioningMapSpec
-    from worker.families.spherical_parallel.study import _Plan
+    from worker.families.spherical_parallel.study import SpmPlan
 
 __all__ = ["BlockContext", "evaluate_block"]
 
 FloatArray = NDArray[np.float64]
+_ANGLES = ("alpha1_deg", "alpha2_deg", "beta_deg", "gamma_deg")
 _INDEX_NAMES = (
     "rms_inverse_condition", "mean_square_inverse_condition", "gci", "min_inverse_condition",
     "max_inverse_condition", "min_abs_det_a",
@@ -108,14 +109,13 @@ def _minimum(context: BlockContext, angles: FloatArray) -> tuple[FloatArray, Flo
 
 
 def _rounded_degrees(rad: FloatArray) -> FloatArray:
+    """Angles as a result reports them: rad -> deg, rounded to 1e-10 deg."""
     shown = [round(math.degrees(v), 10) for v in rad.ravel().tolist()]
     return np.asarray(shown, dtype=np.float64).reshape(rad.shape)
 
 
-def evaluate_block(plan: _Plan, values: FloatArray) -> KernelBlock:
+def evaluate_block(plan: SpmPlan, values: FloatArray) -> KernelBlock:
     """The kernel's answer for designs ``(m, d)`` (see the module doc)."""
-    from worker.families.spherical_parallel.study import _degrees_echo
-
     context: BlockContext = plan.context
     m = len(values)
     deg = plan.angles_deg(values)
@@ -139,8 +139,7 @@ def evaluate_block(plan: _Plan, values: FloatArray) -> KernelBlock:
         if path in found:
             column = found[path]
         elif path.startswith("design."):
-            column = _degrees_echo(deg[valid, ("alpha1_deg", "alpha2_deg", "beta_deg",
-                                               "gamma_deg").index(path[7:])])  # fmt: skip
+            column = _rounded_degrees(_radians(deg[valid, _ANGLES.index(path[7:])]))
         elif path == "indices.samples":
             column = np.full(len(valid), float(context.samples.samples.shape[0]))
         elif path == "indices.branch":
