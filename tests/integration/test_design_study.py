@@ -144,7 +144,8 @@ SPM_STUDY: dict[str, Any] = {
     "process": "spm-conditioning-map",
     "fixed": {"beta_deg": 90, "gamma_deg": 0,
               "workspace": {"tilt_max_deg": 60, "torsion_deg": [0, 360]}},
-    "vary": {"alpha1_deg": [30, 150, 7], "alpha2_deg": [40, 140, 5]},
+    "sample": {"method": "sobol", "count": 35, "seed": 4,
+               "bounds": {"alpha1_deg": [30, 150], "alpha2_deg": [40, 140]}},
     "objectives": {"indices.rms_inverse_condition": "max", "indices.min_inverse_condition": "max"},
     "plots": False,
 }  # fmt: skip
@@ -159,8 +160,9 @@ def designs_arrays(client: Any, study_id: str) -> dict[str, np.ndarray]:
 
 @pytest.mark.parametrize("backend", ["embedded", "celery-redis"])
 def test_a_batched_study_assembles_the_per_design_numbers(backend: str, tmp_path: Path) -> None:
-    """The same SPM study through its kernel and per design (``engine: per-design``), on
-    the embedded backend and on Celery + Redis with PostgreSQL: the same feasible
+    """The same SPM study (a Sobol sample of designs) through its kernel and per design
+    (``engine: per-design``), on the embedded backend and on Celery + Redis with
+    PostgreSQL: the same feasible
     designs, objectives equal to 1e-12, the same reason codes and fields but for the
     kernel's one shortcut (a design the process refuses for reaching none of the cone
     has no C_n either: 'no-value' there)."""
@@ -186,7 +188,7 @@ def test_a_batched_study_assembles_the_per_design_numbers(backend: str, tmp_path
         fields = (fast["reason_fields"][fast["reason_field"]],
                   slow["reason_fields"][slow["reason_field"]])  # fmt: skip
         shortcut = (slow["reason_code"] == 1) & (fields[1] == "inputs.workspace")
-        assert shortcut.sum() == 4 and (fast["reason_code"][shortcut] == 2).all()
+        assert (fast["reason_code"][shortcut] == 2).all()
         np.testing.assert_array_equal(fast["reason_code"][~shortcut],
                                       slow["reason_code"][~shortcut])  # fmt: skip
         np.testing.assert_array_equal(fields[0][~shortcut], fields[1][~shortcut])
