@@ -182,6 +182,9 @@ class ResultPathDocument(_Document):
                       "'mixed' (docs/data-files.md).")  # fmt: skip
     symbol: str = Field(description="The symbol as mathtext ('$d_z$'); '' for none.")
     description: str
+    kernel: bool = Field(False, description="true where the process's study kernel computes "
+                         "this number: a design study reading it runs batched (present only "
+                         "then).")  # fmt: skip
 
 
 class ProcessDescription(_Document):

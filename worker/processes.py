@@ -17,8 +17,10 @@ from pydantic import BaseModel
 
 from worker.contract import ChildEnd, JobContext, JobOutcome
 from worker.result_paths import ResultPathInfo
+from worker.study_kernels import StudyKernel
 
 __all__ = [
+    "ChildFiles",
     "ChildResults",
     "FanOutSteps",
     "PaperPoint",
@@ -27,6 +29,7 @@ __all__ = [
     "ProcessFile",
     "ProcessRegistry",
     "ResultPathInfo",
+    "StudyKernel",
     "data_files",
     "default_registry",
     "figure_files",
@@ -80,6 +83,9 @@ def data_files(stem: str, title: str) -> tuple[ProcessFile, ProcessFile]:
 
 #: A fan-out parent's children as it assembles them: how each ended, and its result.
 ChildResults = Iterable[tuple[ChildEnd, Mapping[str, Any] | None]]
+#: A child's artifact as its parent assembles it: (child job ID, name) -> its bytes, or
+#: None if the child has no such file (one child's file at a time: a study streams them).
+ChildFiles = Callable[[str, str], bytes | None]
 
 
 @dataclass(frozen=True)
@@ -99,12 +105,13 @@ class FanOutSteps:
     """A process that fans out over the workers (``design-study``): its first attempt
     ``split``s the validated inputs into the inputs of ``child_process`` jobs, which run
     like any job; once they all ended, ``assemble`` builds the outcome from them in
-    order (worker.store.fan_out).  ``allow_partial``: whether a failed child is
-    reported as missing instead of failing the parent."""
+    order, reading their files through a :data:`ChildFiles` (worker.store.fan_out).
+    ``allow_partial``: whether a failed child is reported as missing instead of failing
+    the parent."""
 
     child_process: str
     split: Callable[[Any], Sequence[Mapping[str, Any]]]
-    assemble: Callable[[Any, ChildResults, JobContext], JobOutcome]
+    assemble: Callable[[Any, ChildResults, ChildFiles, JobContext], JobOutcome]
     allow_partial: Callable[[Any], bool] = lambda inputs: False
 
 
@@ -152,6 +159,9 @@ class ProcessDefinition:
     #: grows with its inputs); capped at ``time_limit_s``, the limit the process
     #: publishes.  None: ``time_limit_s`` for every job.
     attempt_time_limit: Callable[[Any], float] | None = None
+    #: The batched evaluation a design study uses for the result paths it covers
+    #: (:mod:`worker.study_kernels`); None: studies of this process run per design.
+    study_kernel: StudyKernel | None = None
 
     def time_limit_for(self, inputs: Any) -> float:
         """The time limit of one attempt of a job with these validated inputs."""
@@ -165,7 +175,9 @@ class ProcessDefinition:
         return self.inputs_model.model_json_schema()
 
     def describe(self) -> dict[str, Any]:
-        """The process description served at ``GET /v1/processes/{id}``."""
+        """The process description served at ``GET /v1/processes/{id}``: each result
+        path a study kernel covers says ``"kernel": true``."""
+        covered = set(self.study_kernel.covers) if self.study_kernel is not None else set()
         return {
             "id": self.id,
             "title": self.title,
@@ -178,7 +190,9 @@ class ProcessDefinition:
             ),
             "inputs": copy.deepcopy(self.inputs_schema),
             "outputs": dict(self.outputs),
-            "result_paths": [entry.describe() for entry in self.result_paths],
+            "result_paths": [
+                entry.describe(kernel=entry.path in covered) for entry in self.result_paths
+            ],
             "examples": [
                 {"title": ex.title, "description": ex.description, "inputs": dict(ex.inputs)}
                 for ex in self.examples

@@ -73,14 +73,19 @@ class ResultPathInfo:
     description: str
     optional: str = ""
 
-    def describe(self) -> dict[str, str]:
-        """The entry as published in a process description."""
-        return {
+    def describe(self, *, kernel: bool = False) -> dict[str, str | bool]:
+        """The entry as published in a process description; ``kernel``: a design
+        study evaluates it in its process's batched kernel (:mod:`worker.study_kernels`),
+        published as ``"kernel": true`` (absent otherwise)."""
+        entry: dict[str, str | bool] = {
             "path": self.path,
             "unit": self.unit,
             "symbol": self.symbol,
             "description": self.description,
         }
+        if kernel:
+            entry["kernel"] = True
+        return entry
 
 
 def prefixed(prefix: str, entries: Iterable[ResultPathInfo]) -> tuple[ResultPathInfo, ...]:

@@ -262,6 +262,11 @@ class WorkerLoop:
         ):
             self.on_queued([parent_id])
 
+    def _child_file(self, job_id: str, name: str) -> bytes | None:
+        """A child job's artifact, for its parent's assembly."""
+        artifact = self.store.get_artifact(job_id, name)
+        return None if artifact is None else artifact.data
+
     def _run_job(self, claim: Claim, context: StoreProgress) -> tuple[dict[str, Any], Any] | None:
         job = claim.job
         definition = self.registry.get(job.process_id)
@@ -277,7 +282,7 @@ class WorkerLoop:
             inputs = definition.inputs_model.model_validate(job.inputs)
             if definition.fan_out is not None and job.phase == "assembling":
                 children = self.store.child_results(job.job_id)
-                outcome = definition.fan_out.assemble(inputs, children, context)
+                outcome = definition.fan_out.assemble(inputs, children, self._child_file, context)
             else:
                 outcome = definition.run(inputs, context)
         except (Exception, ValidationError) as exc:

@@ -9,7 +9,7 @@ whole queue.
 
 from __future__ import annotations
 
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 from typing import Any
 
 from pydantic import BaseModel, ValidationError
@@ -25,6 +25,7 @@ from worker.store.base import JobStore, NewJob, QueueLimits
 
 __all__ = [
     "field_errors",
+    "field_path",
     "queue_limits",
     "request_hash",
     "submit",
@@ -33,23 +34,29 @@ __all__ = [
 ]
 
 
+def field_path(loc: Sequence[str | int]) -> str:
+    """A pydantic location as a dotted field path: ``("inputs", "links", 0)`` ->
+    ``inputs.links[0]``."""
+    # Drop the union-member tags pydantic inserts (e.g. "PolylineTrajectory" or
+    # "function-after[...]"); the last element is always a real field name.
+    parts = [
+        str(p)
+        for i, p in enumerate(loc)
+        if i == len(loc) - 1 or not (isinstance(p, str) and (p[:1].isupper() or "[" in p))
+    ]
+    field = ""
+    for part in parts:
+        field += f"[{part}]" if part.isdigit() else (f".{part}" if field else part)
+    return field or "inputs"
+
+
 def field_errors(exc: ValidationError, prefix: tuple[str | int, ...] = ()) -> list[dict[str, Any]]:
     """Pydantic errors as ``{"field", "message", "type"}`` with dotted field paths."""
-    errors = []
-    for err in exc.errors(include_url=False):
-        loc = (*prefix, *err.get("loc", ()))
-        # Drop the union-member tags pydantic inserts (e.g. "PolylineTrajectory" or
-        # "function-after[...]"); the last element is always a real field name.
-        parts = [
-            str(p)
-            for i, p in enumerate(loc)
-            if i == len(loc) - 1 or not (isinstance(p, str) and (p[:1].isupper() or "[" in p))
-        ]
-        field = ""
-        for part in parts:
-            field += f"[{part}]" if part.isdigit() else (f".{part}" if field else part)
-        errors.append({"field": field or "inputs", "message": err["msg"], "type": err["type"]})
-    return errors
+    return [
+        {"field": field_path((*prefix, *err.get("loc", ()))), "message": err["msg"],
+         "type": err["type"]}
+        for err in exc.errors(include_url=False)
+    ]  # fmt: skip
 
 
 def validate_inputs(definition: ProcessDefinition, raw: Mapping[str, Any]) -> BaseModel:

@@ -114,7 +114,7 @@ def process_description(definition: ProcessDefinition, urls: PublicUrls) -> dict
     document["outputs"] = {
         output_id: spec.describe() for output_id, spec in process_outputs(definition).items()
     }
-    document["result_paths"] = [entry.describe() for entry in definition.result_paths]
+    document["result_paths"] = definition.describe()["result_paths"]
     links = document["links"]
     links.append(
         {

@@ -104,6 +104,7 @@ class OgcResultPath(_Document):
     unit: str
     symbol: str
     description: str
+    kernel: bool = False
 
 
 class OgcProcess(OgcProcessSummary):

@@ -5,12 +5,14 @@ listed, and dismissing the study stops its chunks."""
 
 from __future__ import annotations
 
+import io
 import os
 import signal
 import time
 from pathlib import Path
 from typing import Any
 
+import numpy as np
 import pytest
 
 from tests.integration.servers import deployment, wait_for, wait_terminal
@@ -136,3 +138,57 @@ def test_a_killed_chunk_is_retried_and_no_design_is_counted_twice(
         assert (result["count"], result["evaluated"], result["missing"]) == (20, 20, 0)
         csv = client.get(f"/v1/jobs/{study_id}/results/designs.csv").text.splitlines()
         assert [int(line.split(",")[0]) for line in csv[1:]] == list(range(20))
+
+
+SPM_STUDY: dict[str, Any] = {
+    "process": "spm-conditioning-map",
+    "fixed": {"beta_deg": 90, "gamma_deg": 0,
+              "workspace": {"tilt_max_deg": 60, "torsion_deg": [0, 360]}},
+    "sample": {"method": "sobol", "count": 35, "seed": 4,
+               "bounds": {"alpha1_deg": [30, 150], "alpha2_deg": [40, 140]}},
+    "objectives": {"indices.rms_inverse_condition": "max", "indices.min_inverse_condition": "max"},
+    "plots": False,
+}  # fmt: skip
+
+
+def designs_arrays(client: Any, study_id: str) -> dict[str, np.ndarray]:
+    data = client.get(f"/v1/jobs/{study_id}/results/designs.npz").content
+    with np.load(io.BytesIO(data)) as npz:
+        return {name: npz[name] for name in ("objectives", "reason_code", "reason_field",
+                                             "reason_fields", "index")}  # fmt: skip
+
+
+@pytest.mark.parametrize("backend", ["embedded", "celery-redis"])
+def test_a_batched_study_assembles_the_per_design_numbers(backend: str, tmp_path: Path) -> None:
+    """The same SPM study (a Sobol sample of designs) through its kernel and per design
+    (``engine: per-design``), on the embedded backend and on Celery + Redis with
+    PostgreSQL: the same feasible
+    designs, objectives equal to 1e-12, the same reason codes and fields but for the
+    kernel's one shortcut (a design the process refuses for reaching none of the cone
+    has no C_n either: 'no-value' there)."""
+    with deployment(backend, tmp_path, workers=2) as dep:
+        client = dep.client
+        arrays = {}
+        for engine in ("auto", "per-design"):
+            submitted = client.post(URL, json={"inputs": {**SPM_STUDY, "engine": engine}})
+            assert submitted.status_code == 201, submitted.text
+            study_id = submitted.json()["jobID"]
+            done = wait_terminal(client, study_id, timeout=300)
+            assert done["status"] == "successful", (done, dep.log())
+            result = client.get(f"/v1/jobs/{study_id}/results").json()["result"]
+            assert result["engine"] == ("batched" if engine == "auto" else "per-design")
+            assert result["count"] == result["evaluated"] == 35
+            arrays[engine] = designs_arrays(client, study_id)
+        fast, slow = arrays["auto"], arrays["per-design"]
+        feasible = fast["reason_code"] == 0
+        np.testing.assert_array_equal(feasible, slow["reason_code"] == 0)
+        assert 0 < feasible.sum() < 35
+        np.testing.assert_allclose(fast["objectives"][feasible], slow["objectives"][feasible],
+                                   rtol=1e-12, atol=0)  # fmt: skip
+        fields = (fast["reason_fields"][fast["reason_field"]],
+                  slow["reason_fields"][slow["reason_field"]])  # fmt: skip
+        shortcut = (slow["reason_code"] == 1) & (fields[1] == "inputs.workspace")
+        assert (fast["reason_code"][shortcut] == 2).all()
+        np.testing.assert_array_equal(fast["reason_code"][~shortcut],
+                                      slow["reason_code"][~shortcut])  # fmt: skip
+        np.testing.assert_array_equal(fields[0][~shortcut], fields[1][~shortcut])

@@ -1,15 +1,17 @@
 """Assembling a study: every design's row, the non-dominated set and the best designs.
 
-The chunks' results are read one at a time (a study's assembly streams them from the
-store) into one table: design index, varied parameters, objective values (NaN where
-the process reported none) and, for an infeasible design, why.  A chunk that failed
-(with ``allow_partial``) leaves its designs missing, counted and named in the result.
+The chunks are read one at a time (a study's assembly streams them from the store:
+each chunk's result document and its ``rows.npz``, :mod:`.rows`) into one table of
+arrays: design index, varied parameters (rebuilt from the study's inputs, a chunk's
+block at a time), objective values (NaN where the process reported none), reason
+codes and fields; the reasons' messages are counted, never kept per design.  A chunk
+that failed (with ``allow_partial``) leaves its designs missing, counted and named in
+the result.  Nothing here holds a Python object per design.
 """
 
 from __future__ import annotations
 
 import math
-from collections import Counter
 from collections.abc import Iterable, Mapping
 from dataclasses import dataclass
 from typing import Any
@@ -18,7 +20,9 @@ import numpy as np
 from numpy.typing import NDArray
 
 from worker.contract import ChildEnd
+from worker.processes import ChildFiles
 from worker.studies.pareto import non_dominated
+from worker.studies.rows import FEASIBLE, REASON_CODES, ROWS_FILE, ChunkRows, ReasonTally
 from worker.studies.spec import StudySpec
 
 __all__ = ["MAX_LISTED", "StudyTable", "collect", "entry", "pareto_rows", "summary"]
@@ -32,46 +36,71 @@ MAX_REASONS = 20
 @dataclass(frozen=True)
 class StudyTable:
     """Every evaluated design, in index order: ``index`` (n,), ``parameters`` (n, d),
-    ``objectives`` (n, k, NaN where none), ``reasons`` (n, None where feasible)."""
+    ``objectives`` (n, k, NaN where none), ``codes`` (n,) reason codes (0: feasible),
+    ``fields`` (n,) indices into ``field_names`` (0: none), the reasons counted, the
+    chunks that failed and the engines that evaluated the chunks."""
 
     index: NDArray[np.int64]
     parameters: NDArray[np.float64]
     objectives: NDArray[np.float64]
-    reasons: list[str | None]
+    codes: NDArray[np.int8]
+    fields: NDArray[np.int16]
+    field_names: tuple[str, ...]
+    tally: ReasonTally
     missing_chunks: list[str]
+    engines: tuple[str, ...] = ()
 
     @property
     def feasible(self) -> NDArray[np.bool_]:
-        return np.array([r is None for r in self.reasons], dtype=bool)
+        return np.asarray(self.codes == FEASIBLE)
 
 
 def collect(
-    spec: StudySpec, children: Iterable[tuple[ChildEnd, Mapping[str, Any] | None]]
+    spec: StudySpec,
+    children: Iterable[tuple[ChildEnd, Mapping[str, Any] | None]],
+    files: ChildFiles,
 ) -> StudyTable:
-    """The table of every chunk's rows (chunks without a result are listed as missing)."""
-    d, k = len(spec.designs.names), len(spec.objectives)
-    index: list[int] = []
-    parameters: list[list[float]] = []
-    objectives: list[list[float]] = []
-    reasons: list[str | None] = []
+    """The table of every chunk's rows, read a chunk at a time (chunks without a result
+    are listed as missing)."""
+    space = spec.designs
+    count, d, k = space.count, len(space.names), len(spec.objectives)
+    parameters = np.full((count, d), np.nan)
+    objectives = np.full((count, k), np.nan)
+    codes = np.zeros(count, dtype=np.int8)
+    fields = np.zeros(count, dtype=np.int16)
+    evaluated = np.zeros(count, dtype=bool)
+    names: list[str] = [""]
+    tally = ReasonTally()
     missing: list[str] = []
+    engines: list[str] = []
     for end, result in children:
         if result is None:
             missing.append(end.job_id)
             continue
-        for row in result["rows"]:
-            index.append(int(row["index"]))
-            parameters.append([float(v) for v in row["parameters"]])
-            objectives.append([math.nan if v is None else float(v) for v in row["objectives"]])
-            reasons.append(row["reason"])
-    order = np.argsort(np.asarray(index, dtype=np.int64), kind="stable")
-    return StudyTable(
-        index=np.asarray(index, dtype=np.int64)[order],
-        parameters=np.asarray(parameters, dtype=np.float64).reshape(-1, d)[order],
-        objectives=np.asarray(objectives, dtype=np.float64).reshape(-1, k)[order],
-        reasons=[reasons[i] for i in order],
-        missing_chunks=missing,
-    )
+        rows = ChunkRows.stored(result, files(end.job_id, ROWS_FILE), k)
+        block = slice(rows.start, rows.stop)
+        parameters[block] = space.block(rows.start, rows.stop)
+        objectives[block] = rows.objectives
+        codes[block] = rows.codes
+        remap = np.array([_place(names, name) for name in rows.field_names], dtype=np.int16)
+        fields[block] = remap[rows.fields]
+        evaluated[block] = True
+        tally.merge(rows.tally)
+        if rows.engine not in engines:
+            engines.append(rows.engine)
+    if evaluated.all():
+        index = np.arange(count, dtype=np.int64)
+        return StudyTable(index, parameters, objectives, codes, fields, tuple(names), tally,
+                          missing, tuple(engines))  # fmt: skip
+    keep = np.flatnonzero(evaluated)
+    return StudyTable(keep.astype(np.int64), parameters[keep], objectives[keep], codes[keep],
+                      fields[keep], tuple(names), tally, missing, tuple(engines))  # fmt: skip
+
+
+def _place(names: list[str], name: str) -> int:
+    if name not in names:
+        names.append(name)
+    return names.index(name)
 
 
 def entry(spec: StudySpec, table: StudyTable, row: int) -> dict[str, Any]:
@@ -106,21 +135,21 @@ def best_rows(spec: StudySpec, table: StudyTable) -> dict[str, list[int]]:
     return best
 
 
-def summary(spec: StudySpec, table: StudyTable) -> dict[str, Any]:
+def summary(spec: StudySpec, table: StudyTable, front: NDArray[np.intp]) -> dict[str, Any]:
     """The result document's numbers: counts, reasons, the Pareto set, the best."""
     count = spec.designs.count
     feasible = table.feasible
-    front = pareto_rows(spec, table)
-    reasons = Counter(r for r in table.reasons if r is not None)
+    by_code = np.bincount(table.codes.astype(np.intp), minlength=len(REASON_CODES))
     return {
         "count": count,
         "evaluated": int(table.index.size),
         "feasible": int(feasible.sum()),
         "missing": count - int(table.index.size),
         "missing_chunks": table.missing_chunks,
-        "infeasible_reasons": [
-            {"reason": reason, "designs": n} for reason, n in reasons.most_common(MAX_REASONS)
-        ],
+        "infeasible": {
+            name: int(by_code[code]) for code, name in enumerate(REASON_CODES) if code != FEASIBLE
+        },
+        "infeasible_reasons": table.tally.most_common(MAX_REASONS),
         "parameters": list(spec.designs.names),
         "objectives": dict(spec.objectives),
         "pareto_size": int(front.size),

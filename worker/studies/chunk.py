@@ -1,20 +1,24 @@
 """``design-study-chunk``: one block of a study's designs, evaluated on one worker.
 
-A study's first attempt splits its designs into chunks (:mod:`.process`); each chunk is
+A study's first attempt splits its designs into chunks (:mod:`.chunking`); each chunk is
 a job of this process, stored and dispatched like any job, that rebuilds its block of
-designs from the study's inputs and evaluates them (:mod:`.evaluation`).  It is run by
-the workers only: the service does not list it or accept it.
+designs from the study's inputs and evaluates them with the study's engine (the
+process's kernel, :mod:`.batched`, or the process per design, :mod:`.evaluation`).
+Its rows are written as it finishes, as arrays (``rows.npz``, :mod:`.rows`), which the
+assembly reads a chunk at a time.  It is run by the workers only: the service does not
+list it or accept it.
 """
 
 from __future__ import annotations
 
-from typing import Any
+from typing import Literal
 
 from pydantic import Field, model_validator
 
 from worker.common.specs import FrozenSpec
-from worker.contract import JobContext, JobOutcome
-from worker.processes import ProcessDefinition
+from worker.contract import Artifact, JobContext, JobOutcome
+from worker.processes import ProcessDefinition, ProcessFile
+from worker.studies.rows import ROWS_FILE, ChunkRows
 from worker.studies.spec import MAX_CHUNK, StudySpec
 
 __all__ = ["CHUNK", "ChunkSpec", "run_chunk"]
@@ -29,6 +33,9 @@ class ChunkSpec(FrozenSpec):
     study: StudySpec
     start: int = Field(..., ge=0)
     stop: int = Field(..., ge=1)
+    engine: Literal["batched", "per-design"] = Field(
+        "per-design", description="The engine the study chose for its designs."
+    )
 
     @model_validator(mode="after")
     def _inside(self) -> ChunkSpec:
@@ -38,9 +45,13 @@ class ChunkSpec(FrozenSpec):
         return self
 
 
-def run_chunk(spec: ChunkSpec, ctx: JobContext) -> JobOutcome:
+def evaluate_chunk(spec: ChunkSpec, ctx: JobContext) -> ChunkRows:
+    """The chunk's rows, with the study's engine (per design should the kernel be
+    unavailable here: the same numbers, more slowly)."""
     from worker.processes import default_registry
-    from worker.studies.evaluation import evaluate_block
+    from worker.studies.batched import evaluate_batched
+    from worker.studies.engine import choose_engine
+    from worker.studies.evaluation import chunk_rows, evaluate_block
 
     process = default_registry().get(spec.study.process)
     assert process is not None  # the study's validator checked it
@@ -49,14 +60,21 @@ def run_chunk(spec: ChunkSpec, ctx: JobContext) -> JobOutcome:
     def progress(done: int, _: int) -> None:
         ctx.report_progress(100.0 * done / total, f"design {done} of {total}")
 
+    if spec.engine == "batched":
+        choice = choose_engine(spec.study, process)
+        if choice.engine == "batched":
+            return evaluate_batched(spec.study, process, choice, spec.start, spec.stop, progress)
     rows = evaluate_block(spec.study, process, spec.start, spec.stop, progress)
-    result: dict[str, Any] = {
-        "start": spec.start,
-        "stop": spec.stop,
-        "rows": [row.as_json() for row in rows],
-    }
-    return JobOutcome(result=result)
+    return chunk_rows(rows, spec.start, spec.stop, len(spec.study.objectives))
 
+
+def run_chunk(spec: ChunkSpec, ctx: JobContext) -> JobOutcome:
+    rows = evaluate_chunk(spec, ctx)
+    data = Artifact(ROWS_FILE, "application/x-npz", rows.artifact_bytes(), _ROWS_TITLE)
+    return JobOutcome(result=rows.result(), artifacts=(data,))
+
+
+_ROWS_TITLE = "The chunk's designs: objectives, reason codes and fields (NumPy arrays)"
 
 CHUNK = ProcessDefinition(
     id="design-study-chunk",
@@ -65,11 +83,16 @@ CHUNK = ProcessDefinition(
     inputs_model=ChunkSpec,
     run=run_chunk,
     examples=(),
+    files=(ProcessFile(ROWS_FILE, _ROWS_TITLE),),
     outputs={
         "start": "First design of the chunk.",
         "stop": "One past its last design.",
-        "rows": "Per design: index, parameters, objectives, reason (null when feasible).",
+        "engine": "The engine that evaluated its designs: 'batched' or 'per-design'.",
+        "rows": f"The artifact holding its designs' arrays ({ROWS_FILE}).",
+        "fields": "The fields its refusals name (reason_field indexes them).",
+        "reasons": "[code, field, message, designs] for each distinct reason.",
     },
+    version="2.0.0",
     cost=lambda spec: spec.stop - spec.start,
     cost_limit=MAX_CHUNK,
     cost_unit="designs",

@@ -2,7 +2,8 @@
 
 A design space has a ``count`` and hands out any block of designs by index, as an
 array (stop - start, d) of the varied inputs in ``names`` order, without building the
-whole set first (a grid is unravelled, a Sobol sequence fast-forwarded).  The same
+whole set first (a grid is unravelled, a Sobol sequence fast-forwarded, a Latin
+hypercube's strata permuted design by design: :mod:`.hypercube`).  The same
 space always gives the same designs: a chunk job rebuilds exactly its own block.
 """
 
@@ -16,6 +17,8 @@ from typing import Literal
 
 import numpy as np
 from numpy.typing import NDArray
+
+from worker.studies.hypercube import latin_hypercube_block
 
 __all__ = ["DesignSpace", "GridSpace", "SampleSpace"]
 
@@ -67,19 +70,18 @@ class SampleSpace:
         return tuple(name for name, *_ in self.bounds)
 
     def block(self, start: int, stop: int) -> FloatArray:
-        from scipy.stats import qmc  # here: loading the registry must not load scipy
-
         d = len(self.bounds)
         if self.method == "sobol":
+            from scipy.stats import qmc  # here: loading the registry must not load scipy
+
             engine = qmc.Sobol(d, scramble=True, rng=np.random.default_rng(self.seed))
             if start:
                 engine.fast_forward(start)
             with warnings.catch_warnings():  # balance needs powers of two; any count is fine
                 warnings.simplefilter("ignore", UserWarning)
                 unit = engine.random(stop - start)
-        else:  # the hypercube's strata span the whole sample: draw it, keep the block
-            lhs = qmc.LatinHypercube(d, rng=np.random.default_rng(self.seed))
-            unit = lhs.random(self.count)[start:stop]
+        else:  # keyed permutations of the strata: the block alone (.hypercube)
+            unit = latin_hypercube_block(self.count, d, self.seed, start, stop)
         lo = np.array([b[1] for b in self.bounds])
         hi = np.array([b[2] for b in self.bounds])
         return np.asarray(lo + unit * (hi - lo), dtype=np.float64)

@@ -1,11 +1,13 @@
-"""Evaluating a block of a study's designs with the single-design process.
+"""Evaluating a block of a study's designs with the single-design process (the
+per-design engine, the reference the batched one is checked against).
 
 Each design is the fixed inputs with the varied values set at their paths, validated as
 the service validates a request of that process (its model, its published schema, its
 cost limit), run as a job of that process would run
 (plots off when the process has the switch) and read at the objective paths.  A design
-is infeasible exactly when the process refuses it (its reason is kept) or reports no
-value for an objective; a design whose run raises is kept too, with the error.
+is infeasible exactly when the process refuses it (``refused``, with the first field
+the refusal names) or reports no value for an objective (``no-value``); a design whose
+run raises is kept too (``failed``), with the error.
 """
 
 from __future__ import annotations
@@ -14,24 +16,30 @@ from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any
 
+import numpy as np
+
 from worker.errors import InvalidInputs
 from worker.processes import ProcessDefinition
 from worker.studies.paths import parse_input_path, parse_result_path, read_result, with_input
+from worker.studies.rows import FAILED, FEASIBLE, NO_VALUE, REFUSED, ChunkRows, ReasonTally
 from worker.studies.spec import StudySpec
 from worker.submission import validate_inputs
 
-__all__ = ["DesignRow", "SilentContext", "design_inputs", "evaluate_block"]
+__all__ = ["DesignRow", "SilentContext", "chunk_rows", "design_inputs", "evaluate_block"]
 
 
 @dataclass(frozen=True)
 class DesignRow:
     """One evaluated design: its index, varied values, objective values (None where
-    the process reported none) and, when infeasible, why."""
+    the process reported none) and, when infeasible, why: a reason code
+    (:mod:`.rows`), the field a refusal names and the message."""
 
     index: int
     parameters: tuple[float, ...]
     objectives: tuple[float | None, ...]
     reason: str | None
+    code: int = FEASIBLE
+    field: str = ""
 
     @property
     def feasible(self) -> bool:
@@ -40,6 +48,25 @@ class DesignRow:
     def as_json(self) -> dict[str, Any]:
         return {"index": self.index, "parameters": list(self.parameters),
                 "objectives": list(self.objectives), "reason": self.reason}  # fmt: skip
+
+
+def chunk_rows(rows: list[DesignRow], start: int, stop: int, k: int) -> ChunkRows:
+    """Designs ``start`` to ``stop`` as the arrays a chunk stores."""
+    objectives = np.array(
+        [[np.nan if v is None else v for v in row.objectives] for row in rows], dtype=np.float64
+    ).reshape(len(rows), k)
+    names: list[str] = [""]
+    fields = np.zeros(len(rows), dtype=np.int16)
+    tally = ReasonTally()
+    for n, row in enumerate(rows):
+        if row.reason is None:
+            continue
+        if row.field not in names:
+            names.append(row.field)
+        fields[n] = names.index(row.field)
+        tally.add(row.code, row.field, row.reason)
+    codes = np.array([row.code for row in rows], dtype=np.int8)
+    return ChunkRows(start, stop, objectives, codes, fields, tuple(names), tally, "per-design")
 
 
 class SilentContext:
@@ -92,19 +119,21 @@ def _evaluate(
             raw["plots"] = False
         inputs = validate_inputs(process, raw)
     except InvalidInputs as exc:  # what the service would answer with a 422
-        return DesignRow(index, parameters, missing, f"refused: {exc}")
+        field = str(exc.errors[0]["field"]) if exc.errors else "inputs"
+        return DesignRow(index, parameters, missing, f"refused: {exc}", REFUSED, field)
     except ValueError as exc:  # a path the fixed inputs do not hold
-        return DesignRow(index, parameters, missing, f"refused: {exc}")
+        return DesignRow(index, parameters, missing, f"refused: {exc}", REFUSED, "inputs")
     cost = process.cost(inputs)
     if cost > process.cost_limit:
         reason = f"refused: costs {cost:,} {process.cost_unit}, above {process.cost_limit:,}"
-        return DesignRow(index, parameters, missing, reason)
+        return DesignRow(index, parameters, missing, reason, REFUSED, "inputs")
     try:
         outcome = process.run(inputs, SilentContext())
     except Exception as exc:  # kept with its reason, never dropped silently
-        return DesignRow(index, parameters, missing, f"failed: {type(exc).__name__}: {exc}")
+        reason = f"failed: {type(exc).__name__}: {exc}"
+        return DesignRow(index, parameters, missing, reason, FAILED)
     values = tuple(read_result(outcome.result, path) for path in paths)
     absent = [name for name, v in zip(spec.objectives, values, strict=True) if v is None]
-    return DesignRow(
-        index, parameters, values, f"no value for {', '.join(absent)}" if absent else None
-    )
+    if absent:
+        return DesignRow(index, parameters, values, f"no value for {', '.join(absent)}", NO_VALUE)
+    return DesignRow(index, parameters, values, None)

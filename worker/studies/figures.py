@@ -49,6 +49,9 @@ _INFEASIBLE = "#d9d9d9"
 _MARKER_SHAPES = ("*", "D", "P", "X", "s", "^")
 #: Most slices of the third varied input shown (evenly spread, both ends kept).
 MAX_SLICES = 6
+#: Point clouds larger than this are drawn as an image inside the SVG (a million
+#: vector markers would make a file of hundreds of megabytes).
+RASTER_POINTS = 5_000
 
 
 @dataclass(frozen=True)
@@ -235,7 +238,7 @@ def pareto_figure(
     finite = np.isfinite(objectives[:, :2]).all(axis=1)
     ax.plot(objectives[finite, 0], objectives[finite, 1], ls="none", marker=".", ms=4,
             color=_CLOUD, alpha=0.6, label=f"feasible designs ({int(finite.sum()):,})",
-            zorder=_CLOUD_Z)  # fmt: skip
+            zorder=_CLOUD_Z, rasterized=bool(finite.sum() > RASTER_POINTS))  # fmt: skip
     for k, marker in enumerate(markers):
         if marker.objectives is not None and all(map(math.isfinite, marker.objectives[:2])):
             # Hollow and under the front, each smaller than the last: twins share their
@@ -247,7 +250,7 @@ def pareto_figure(
     order = np.argsort(points[:, 0], kind="stable")
     ax.plot(points[order, 0], points[order, 1], marker="o", ms=5, color=_FRONT, lw=1.2,
             mec="white", mew=0.6, label=f"non-dominated ({len(front):,})",
-            zorder=_FRONT_Z)  # fmt: skip
+            zorder=_FRONT_Z, rasterized=len(front) > RASTER_POINTS)  # fmt: skip
     words = {"max": "larger is better", "min": "smaller is better"}
     ax.set_title(f"x: {words[goals[0]]}; y: {words[goals[1]]}", fontsize=9.5, color="0.3")
     ax.set_xlabel(labels[0], fontsize=10)

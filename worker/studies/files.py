@@ -14,13 +14,15 @@ from collections.abc import Mapping
 from typing import Any
 
 import numpy as np
+from numpy.typing import NDArray
 
 from worker.common.data_export import DIMENSIONLESS, column, columns_csv, job_metadata, npz_artifact
 from worker.contract import Artifact
 from worker.processes import ProcessDefinition, ResultPathInfo
 from worker.result_paths import ResultPathTable, unit_text
-from worker.studies.assembly import StudyTable, pareto_rows
+from worker.studies.assembly import StudyTable
 from worker.studies.paths import parse_input_path, parse_result_path
+from worker.studies.rows import REASON_CODES
 from worker.studies.spec import StudySpec
 
 __all__ = [
@@ -125,20 +127,28 @@ def designs_csv(spec: StudySpec, process: ProcessDefinition, table: StudyTable) 
     for j, name in enumerate(objective_columns):
         columns[name] = table.objectives[:, j]
     columns[column("feasible", DIMENSIONLESS)] = table.feasible.astype(np.int8)
+    columns[column("reason_code", DIMENSIONLESS)] = table.codes
     return columns_csv("designs.csv", columns, "Every design: parameters and objectives (CSV)")
 
 
-def designs_npz(spec: StudySpec, process: ProcessDefinition, table: StudyTable) -> Artifact:
+def designs_npz(
+    spec: StudySpec, process: ProcessDefinition, table: StudyTable, front: NDArray[np.intp]
+) -> Artifact:
+    """Every design's arrays: reason codes (``reason_codes`` names them) and the fields
+    refusals name (an index into ``reason_fields``; 0 is ``""``: none), never a message
+    per design."""
     units = [parameter_unit(process, name, spec.fixed) for name in spec.designs.names]
     entries = [objective_entry(process, name) for name in spec.objectives]
-    reasons = np.array([r or "" for r in table.reasons], dtype=str)
     arrays = {
         "index": table.index,
         "parameters": table.parameters,
         "objectives": table.objectives,
         "feasible": table.feasible,
-        "reason": reasons,
-        "pareto": table.index[pareto_rows(spec, table)],
+        "reason_code": table.codes,
+        "reason_codes": np.array(REASON_CODES, dtype=str),
+        "reason_field": table.fields,
+        "reason_fields": np.array(table.field_names, dtype=str),
+        "pareto": table.index[front],
         "parameter_names": np.array(spec.designs.names, dtype=str),
         "parameter_units": np.array(units, dtype=str),
         "objective_names": np.array(list(spec.objectives), dtype=str),
@@ -153,11 +163,14 @@ def designs_npz(spec: StudySpec, process: ProcessDefinition, table: StudyTable) 
         units={"index": DIMENSIONLESS, "parameters": "parameter_units",
                "objectives": "objective_units", "objective_units": DIMENSIONLESS,
                "objective_symbols": DIMENSIONLESS,
-               "feasible": DIMENSIONLESS, "reason": DIMENSIONLESS, "pareto": DIMENSIONLESS,
+               "feasible": DIMENSIONLESS, "reason_code": DIMENSIONLESS,
+               "reason_codes": DIMENSIONLESS, "reason_field": DIMENSIONLESS,
+               "reason_fields": DIMENSIONLESS, "pareto": DIMENSIONLESS,
                "parameter_names": DIMENSIONLESS, "parameter_units": DIMENSIONLESS,
                "objective_names": DIMENSIONLESS, "objective_goals": DIMENSIONLESS},
         axes={"index": ("design",), "parameters": ("design", "parameter"),
               "objectives": ("design", "objective"), "feasible": ("design",),
-              "reason": ("design",), "pareto": ("pareto_design",)},
+              "reason_code": ("design",), "reason_field": ("design",),
+              "pareto": ("pareto_design",)},
         metadata=job_metadata("design-study", spec.model_dump(mode="json")),
     )  # fmt: skip

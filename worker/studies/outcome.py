@@ -8,7 +8,7 @@ import numpy as np
 
 from worker.common.figures import figure_artifacts
 from worker.contract import Artifact, JobContext, JobOutcome
-from worker.processes import ChildResults, ProcessDefinition
+from worker.processes import ChildFiles, ChildResults, ProcessDefinition
 from worker.studies.assembly import StudyTable, collect, entry, pareto_rows, summary
 from worker.studies.designs import GridSpace
 from worker.studies.figures import (
@@ -32,8 +32,11 @@ from worker.studies.spec import StudySpec
 __all__ = ["study_outcome"]
 
 
-def study_outcome(spec: StudySpec, children: ChildResults, ctx: JobContext) -> JobOutcome:
+def study_outcome(
+    spec: StudySpec, children: ChildResults, files: ChildFiles, ctx: JobContext
+) -> JobOutcome:
     from worker.processes import default_registry
+    from worker.studies.engine import choose_engine
 
     process = default_registry().get(spec.process)
     assert process is not None
@@ -45,18 +48,23 @@ def study_outcome(spec: StudySpec, children: ChildResults, ctx: JobContext) -> J
             counted.append(1)
             yield item
 
-    table = collect(spec, counting(children))
+    table = collect(spec, counting(children), files)
+    front = pareto_rows(spec, table)
     marks = paper_marks(spec, process)
-    result: dict[str, Any] = {"process": spec.process, **summary(spec, table),
+    batched = table.engines == ("batched",)
+    why = "" if batched else (choose_engine(spec, process).why or "a chunk ran per design")
+    result: dict[str, Any] = {"process": spec.process,
+                              "engine": "batched" if batched else "per-design",
+                              "engine_reason": why, **summary(spec, table, front),
                               "paper_points": _paper_points(spec, table, marks),
                               "chunks": len(counted)}  # fmt: skip
     ctx.report_progress(95.0, "data files and figures")
     artifacts: tuple[Artifact, ...] = (
         designs_csv(spec, process, table),
-        designs_npz(spec, process, table),
+        designs_npz(spec, process, table, front),
     )
     if spec.plots:
-        artifacts += _figures(spec, process, table, marks)
+        artifacts += _figures(spec, process, table, marks, front)
     return JobOutcome(result=result, artifacts=artifacts, notes=tuple(_notes(result)))
 
 
@@ -95,7 +103,11 @@ def _markers(table: StudyTable, marks: list[PaperMark], axes: list[int]) -> list
 
 
 def _figures(
-    spec: StudySpec, process: ProcessDefinition, table: StudyTable, marks: list[PaperMark]
+    spec: StudySpec,
+    process: ProcessDefinition,
+    table: StudyTable,
+    marks: list[PaperMark],
+    front: np.ndarray[Any, Any],
 ) -> tuple[Artifact, ...]:
     labels = []
     for name in spec.objectives:
@@ -118,7 +130,6 @@ def _figures(
         fig = draw(values_of_axes, axes_labels, maps, labels, title, markers)
         out += figure_artifacts(fig, "objective_maps", "Each objective over the varied inputs")
     if len(spec.objectives) >= 2:
-        front = pareto_rows(spec, table)
         markers = _markers(table, marks, list(range(len(space.names))))
         fig = pareto_figure(values, front, labels, list(spec.objectives.values()),
                             f"Design study of {spec.process}: objective space",
@@ -135,10 +146,13 @@ def _notes(result: dict[str, Any]) -> list[str]:
     ]
     if result["infeasible_reasons"]:
         top = result["infeasible_reasons"][0]
+        counts = ", ".join(f"{n:,} {code}" for code, n in result["infeasible"].items() if n)
         notes.append(
-            f"{result['evaluated'] - result['feasible']:,} designs are infeasible; the most "
-            f"frequent reason ({top['designs']:,}): {top['reason']}"
+            f"{result['evaluated'] - result['feasible']:,} designs are infeasible ({counts}); "
+            f"the most frequent reason ({top['designs']:,}): {top['reason']}"
         )
+    if result["engine"] == "per-design":
+        notes.append(f"Evaluated per design: {result['engine_reason']}.")
     if result["missing"]:
         notes.append(
             f"{result['missing']:,} designs are missing: chunks "

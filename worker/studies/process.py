@@ -1,39 +1,39 @@
 """``design-study``: a single-design process evaluated over many designs, fanned out over
 every worker, with the non-dominated set of its objectives.
 
-Its first attempt splits the designs into chunks of about a second of work (timed on
-the first design) and queues them as ``design-study-chunk`` jobs
-(:mod:`worker.store.fan_out`); the parent holds no worker while they run, and the
-chunk that ends last queues the assembly (:mod:`.assembly`, :mod:`.files`,
-:mod:`.figures`).  ``run`` does the same in one process (tests, small studies).
+The designs are evaluated by the process's study kernel when it covers the study
+(``batched``, :mod:`.engine`, :mod:`.batched`) and by the whole process once per design
+otherwise (``per-design``, :mod:`.evaluation`).  Its first attempt splits the designs
+into chunks of about a second of work (:mod:`.chunking`) and queues them as
+``design-study-chunk`` jobs (:mod:`worker.store.fan_out`); the parent holds no worker
+while they run, and the chunk that ends last queues the assembly (:mod:`.assembly`,
+:mod:`.files`, :mod:`.figures`), which reads the chunks' rows one chunk at a time.
+``run`` does the same in one process (tests, small studies).
 """
 
 from __future__ import annotations
 
 import math
-import time
 from collections.abc import Mapping
-from types import MappingProxyType
 from typing import Any
 
 from worker.contract import ChildEnd, JobContext, JobOutcome, JobStatus
 from worker.processes import (
+    ChildFiles,
     ChildResults,
     FanOutSteps,
     ProcessDefinition,
-    ProcessExample,
     ProcessFile,
     figure_files,
 )
+from worker.studies.chunking import chunk_inputs
 from worker.studies.evaluation import SilentContext
+from worker.studies.examples import STUDY_EXAMPLES
 from worker.studies.result_paths import STUDY_RESULT_PATHS
-from worker.studies.spec import MAX_CHUNK, StudySpec
+from worker.studies.spec import StudySpec
 
 __all__ = ["STUDY", "chunk_inputs", "study_cost"]
 
-#: Aimed-for work per chunk (seconds), and the least number of chunks of a study.
-CHUNK_SECONDS = 1.0
-MIN_CHUNKS = 4
 #: A study may cost as much as this many jobs of its process at their cost limit.
 STUDY_JOBS_LIMIT = 1000
 _MILLIONTHS = 1_000_000
@@ -48,12 +48,19 @@ def _target(spec: StudySpec) -> ProcessDefinition:
 
 
 def study_cost(spec: StudySpec) -> int:
-    """Designs x the first design's cost, in millionths of the process's cost limit."""
+    """Designs x a design's cost, in millionths of the process's cost limit: the
+    kernel's cost of a design when the study is batched, else the first design's cost
+    as a job of the process."""
     from worker.errors import InvalidInputs
+    from worker.studies.engine import choose_engine
     from worker.studies.evaluation import design_inputs
     from worker.submission import validate_inputs
 
     process = _target(spec)
+    choice = choose_engine(spec, process)
+    if choice.plan is not None:
+        share = min(1.0, choice.plan.cost / process.cost_limit)
+        return math.ceil(spec.designs.count * share * _MILLIONTHS)
     first = tuple(float(v) for v in spec.designs.block(0, 1)[0])
     try:
         design_cost = int(process.cost(validate_inputs(process, design_inputs(spec, first))))
@@ -83,8 +90,11 @@ def dry_check(spec: StudySpec) -> list[dict[str, Any]]:
     fixed inputs every tried design is refused for are, each at its place in
     ``fixed``.  A refusal is for a varied value when it is at the varied place, inside
     it or at a place holding it.  A design too costly to run during a request (above
-    the process's sync limit and a thousandth of its cost limit) is not run."""
+    the process's sync limit and a thousandth of its cost limit) is not run.  A
+    batched study asks its kernel instead of running the process, and a study asking
+    for ``"engine": "batched"`` that cannot be is refused at ``inputs.engine``."""
     from worker.errors import InvalidInputs
+    from worker.studies.engine import choose_engine
     from worker.studies.evaluation import design_inputs
     from worker.studies.number_inputs import unvariable_paths
     from worker.studies.paths import parse_result_path, reported
@@ -97,6 +107,13 @@ def dry_check(spec: StudySpec) -> list[dict[str, Any]]:
     ]
     if undeclared:
         return undeclared
+    choice = choose_engine(spec, process)
+    if spec.engine == "batched" and choice.engine != "batched":
+        return [{"field": "inputs.engine", "type": "value_error",
+                 "message": f"this study cannot be batched: {choice.why}"}]  # fmt: skip
+    unreported = _unreported_by_kernel(spec, process, choice) if choice.plan else []
+    if unreported:
+        return unreported
     varied = {_field_of(name) for name in spec.designs.names}
     inputs = None
     refusals: list[InvalidInputs] = []
@@ -117,6 +134,8 @@ def dry_check(spec: StudySpec) -> list[dict[str, Any]]:
             f"{spec.process} refuses every design tried ({len(refusals)}, spread over the space)"
         )
         return [_in_fixed(spec.fixed, error, tried) for error in refusals[0].errors]
+    if choice.plan is not None:  # the kernel's answer said what the process reports
+        return []
     if process.cost(inputs) > max(process.sync_cost_limit, process.cost_limit // 1000):
         return []
     try:
@@ -129,6 +148,32 @@ def dry_check(spec: StudySpec) -> list[dict[str, Any]]:
         for name in spec.objectives
         if not reported(result, parse_result_path(name))
     ]  # fmt: skip
+
+
+def _unreported_by_kernel(
+    spec: StudySpec, process: ProcessDefinition, choice: Any
+) -> list[dict[str, Any]]:
+    """A batched study's objectives checked on its kernel's answer for the first design:
+    an index past the end of a list the kernel reports (``chains[7].P`` of five chains)
+    is a path the process does not report."""
+    from worker.result_paths import declared_steps
+    from worker.studies.files import objective_entry
+    from worker.studies.paths import parse_result_path
+
+    block = choice.plan.evaluate(spec.designs.block(0, 1))
+    problems = []
+    for name in spec.objectives:
+        entry = objective_entry(process, name)
+        assert entry is not None  # the engine's choice checked it
+        shape = block.values[entry.path].shape[1:]
+        steps = declared_steps(entry.path)
+        lists = [part for step, part in zip(steps, parse_result_path(name).steps, strict=False)
+                 if step is None]  # fmt: skip
+        if any(isinstance(i, int) and i >= n for i, n in zip(lists, shape, strict=False)):
+            problems.append({"field": f"inputs.objectives.{name}", "type": "value_error",
+                             "message": f"{spec.process} reports nothing at this path "
+                             "(checked on a design)"})  # fmt: skip
+    return problems
 
 
 def _undeclared_objectives(spec: StudySpec, process: ProcessDefinition) -> list[dict[str, Any]]:
@@ -178,39 +223,12 @@ def _related(field: str, varied: str) -> bool:
     return within(field, varied) or (field != "inputs" and within(varied, field))
 
 
-def chunk_size(spec: StudySpec) -> int:
-    """The requested chunk size, or about CHUNK_SECONDS of work (the first design timed
-    twice, the faster run counted), with at least MIN_CHUNKS chunks when there are that
-    many designs."""
-    if spec.chunk_size is not None:
-        return spec.chunk_size
-    from worker.studies.evaluation import evaluate_block
-
-    seconds = math.inf
-    for _ in range(2):  # the first run may pay for imports and caches: the faster counts
-        start = time.perf_counter()
-        evaluate_block(spec, _target(spec), 0, 1)
-        seconds = min(seconds, max(time.perf_counter() - start, 1e-4))
-    count = spec.designs.count
-    size = math.ceil(CHUNK_SECONDS / seconds)
-    return max(1, min(size, math.ceil(count / MIN_CHUNKS), MAX_CHUNK))
-
-
-def chunk_inputs(spec: StudySpec) -> list[dict[str, Any]]:
-    """The chunks' inputs: the study and each block of designs, in order."""
-    size = chunk_size(spec)
-    study = spec.model_dump(mode="json")
-    count = spec.designs.count
-    return [
-        {"study": study, "start": start, "stop": min(start + size, count)}
-        for start in range(0, count, size)
-    ]
-
-
-def assemble(spec: StudySpec, children: ChildResults, ctx: JobContext) -> JobOutcome:
+def assemble(
+    spec: StudySpec, children: ChildResults, files: ChildFiles, ctx: JobContext
+) -> JobOutcome:
     from worker.studies.outcome import study_outcome
 
-    return study_outcome(spec, children, ctx)
+    return study_outcome(spec, children, files, ctx)
 
 
 def run_in_process(spec: StudySpec, ctx: JobContext) -> JobOutcome:
@@ -218,131 +236,28 @@ def run_in_process(spec: StudySpec, ctx: JobContext) -> JobOutcome:
     from worker.studies.chunk import ChunkSpec, run_chunk
 
     chunks = chunk_inputs(spec)
+    stored: dict[tuple[str, str], bytes] = {}
 
     def children() -> ChildResults:
         for n, inputs in enumerate(chunks):
             outcome = run_chunk(ChunkSpec.model_validate(inputs), SilentContext())
             ctx.report_progress(90.0 * (n + 1) / len(chunks), f"chunk {n + 1} of {len(chunks)}")
+            stored.clear()  # one chunk's files at a time, as the store streams them
+            for artifact in outcome.artifacts:
+                stored[(f"chunk-{n}", artifact.name)] = artifact.data
             yield ChildEnd(f"chunk-{n}", JobStatus.SUCCESSFUL, None), outcome.result
 
-    return assemble(spec, children(), ctx)
+    return assemble(spec, children(), lambda job_id, name: stored.get((job_id, name)), ctx)
 
-
-_LIMITS = [[-150, 150], [-150, 150], [-175, 175]]
-_EXAMPLES = (
-    ProcessExample(
-        title="SPM: C_n over (alpha1, alpha2) at beta = 90 deg, Table 1's optimum marked",
-        inputs=MappingProxyType(
-            {
-                "process": "spm-conditioning-map",
-                "fixed": {
-                    "beta_deg": 90,
-                    "gamma_deg": 0,
-                    "workspace": {"tilt_max_deg": 60, "torsion_deg": [0, 360]},
-                },
-                "vary": {"alpha1_deg": [30, 150, 13], "alpha2_deg": [30, 150, 13]},
-                "objectives": {
-                    "indices.rms_inverse_condition": "max",
-                    "indices.min_inverse_condition": "max",
-                },
-            }
-        ),
-        description="Bai's Example I (a 120 deg cone, a full turn, beta = 90 deg): C_n (eq 25) "
-        "and the worst 1/kappa of 169 designs on a 10 deg grid, as heat maps with Table 1's "
-        "optimum (60, 90) and its twin (120, 90) marked. The two are the study's best, C_n "
-        "0.5453 (the paper prints its square, 0.28 for 0.2974); grey designs leave some of "
-        "the cone unreachable or singular.",
-    ),
-    ProcessExample(
-        title="Five-bar: eta over delta through planar2dof-optimisation, Table I's delta marked",
-        inputs=MappingProxyType(
-            {
-                "process": "planar2dof-optimisation",
-                "fixed": {"inverse_condition_limit": 0.526, "aspect_ratio": 4},
-                "vary": {"delta": [1.5, 1.9, 5]},
-                "objectives": {"optimum.eta": "max", "optimum.S": "max"},
-            }
-        ),
-        description="Huang et al.'s proximal-arm five-bar at 1/kappa0 = 0.526 and lambda = 4: "
-        "the global index eta and the rectangle's area S at five deltas around Table I's "
-        "delta = 1.7 (marked), each the optimisation process's own numbers.",
-    ),
-    ProcessExample(
-        title="Chains: Fig 2d's place among the Fig 2 quadrangles as one link's length varies",
-        inputs=MappingProxyType(
-            {
-                "process": "chain-parallelism",
-                "fixed": {
-                    "chains": [
-                        {"name": "Fig 2a", "lengths": [15, 15, 15, 15]},
-                        {"name": "Fig 2b", "lengths": [20, 10, 20, 10]},
-                        {"name": "Fig 2c", "lengths": [20, 20, 10, 10]},
-                        {"name": "Fig 2d", "lengths": [18, 15, 10, 17]},
-                        {"name": "Fig 2e", "lengths": [18, 10, 17, 15]},
-                    ],
-                    "length_unit": "cm",
-                },
-                "vary": {"chains[3].lengths[2]": [6, 24, 19]},
-                "objectives": {"chains[3].rank.by_Q": "min", "chains[3].Q_normalized": "min"},
-            }
-        ),
-        description="The five quadrangles of the paper's Fig 2 with Fig 2d's third link from "
-        "6 to 24 cm: where Fig 2d ranks by Q among them, and its normalised Q.",
-    ),
-    ProcessExample(
-        title="3R arm: worst task-point d_z and total length over (l1, l2)",
-        inputs=MappingProxyType(
-            {
-                "process": "planar3r-dexterity-map",
-                "fixed": {
-                    "links": [15, 14, 8],
-                    "joint_limits_deg": _LIMITS,
-                    "task_points": [[14, 14], [12, 8], [10, -3], [9, -7], [8, -8]],
-                    "grid": {"points_per_axis": 5},
-                },
-                "vary": {"links[0]": [10, 20, 6], "links[1]": [8, 18, 6]},
-                "objectives": {"task_points[].d_z|min": "max", "links|sum": "min"},
-            }
-        ),
-        description="Patel & Sobh's Example 1 under its joint limits, l3 = 8: 36 designs, "
-        "the worst d_z at A..E against the arm's total length, and their Pareto front.",
-    ),
-    ProcessExample(
-        title="SPM: RMS and worst 1/kappa over (alpha1, alpha2), a Sobol sample",
-        inputs=MappingProxyType(
-            {
-                "process": "spm-conditioning-map",
-                "fixed": {
-                    "beta_deg": 90,
-                    "gamma_deg": 0,
-                    "workspace": {
-                        "tilt_max_deg": 60,
-                        "torsion_deg": [0, 360],
-                        "samples": {"azimuth": 6, "tilt": 3, "torsion": 3},
-                    },
-                },
-                "sample": {
-                    "method": "sobol",
-                    "count": 12,
-                    "seed": 1,
-                    "bounds": {"alpha1_deg": [45, 90], "alpha2_deg": [60, 120]},
-                },
-                "objectives": {
-                    "indices.rms_inverse_condition": "max",
-                    "indices.min_inverse_condition": "max",
-                },
-            }
-        ),
-        description="Bai's spherical manipulator with beta = 90 deg over a 60 deg tilt "
-        "workspace: 12 Sobol designs of (alpha1, alpha2), the RMS and the worst 1/kappa.",
-    ),
-)
 
 STUDY = ProcessDefinition(
     id="design-study",
     # 1.1.0: objectives' units in designs.csv and designs.npz (objective_units,
     # objective_symbols) and on the plots; the first varied input on x.
-    version="1.1.0",
+    # 2.0.0: the batched engine ('engine', 'engine_reason'); reason codes per design
+    # (designs.npz reason_code/reason_field instead of a reason string per design, a
+    # reason_code column in designs.csv), infeasible_reasons by code, field and message.
+    version="2.0.0",
     result_paths=STUDY_RESULT_PATHS,
     title="Design study: one process over many designs, with the Pareto front",
     description=(
@@ -352,9 +267,12 @@ STUDY = ProcessDefinition(
         "'max' or 'min', a list reduced with |min, |max, |mean or |sum), the non-dominated "
         "designs and the best per objective. The designs are split into chunk jobs of about "
         "a second each that run on every worker at once; a design the process refuses, or "
-        "that has no value for an objective, is kept as infeasible with its reason. Cost: "
-        "designs x the first design's cost, in millionths of the process's cost limit; at "
-        f"most {STUDY_JOBS_LIMIT} jobs' worth."
+        "that has no value for an objective, is kept as infeasible with its reason code. "
+        "Where the process has a study kernel covering every objective and varied input "
+        '(its result_paths say "kernel": true), the designs are evaluated many at once '
+        "(engine 'batched', the same numbers); else by running the process per design. "
+        "Cost: designs x a design's cost (the kernel's, or the first design's as a job), in "
+        f"millionths of the process's cost limit; at most {STUDY_JOBS_LIMIT} jobs' worth."
     ),
     inputs_model=StudySpec,
     files=(
@@ -365,15 +283,21 @@ STUDY = ProcessDefinition(
     ),
     method_doc="design-studies",
     run=run_in_process,
-    examples=_EXAMPLES,
+    examples=STUDY_EXAMPLES,
     outputs={
         "process": "The process evaluated.",
+        "engine": "'batched' (the process's study kernel) or 'per-design' (the whole process "
+        "once per design).",
+        "engine_reason": "Why the study ran per design ('' when batched).",
         "count": "Designs in the study.",
         "evaluated": "Designs evaluated (count minus those of missing chunks).",
         "feasible": "Designs with a value for every objective.",
         "missing": "Designs of chunks that failed (allow_partial).",
         "missing_chunks": "The chunk jobs that failed.",
-        "infeasible_reasons": "Why designs are infeasible, most frequent first.",
+        "infeasible": "Infeasible designs per reason code: refused, no-value, failed.",
+        "infeasible_reasons": "Why designs are infeasible, most frequent first: reason_code, "
+        "reason_field (the field a refusal names), reason (each distinct message once) and "
+        "designs.",
         "parameters": "The varied input paths, in column order.",
         "objectives": "The objectives (result path -> 'max' or 'min').",
         "pareto_size": "How many designs are non-dominated.",

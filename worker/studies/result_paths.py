@@ -26,6 +26,8 @@ STUDY_RESULT_PATHS = (
     R("evaluated", "-", "", "Designs evaluated (count minus those of missing chunks)."),
     R("feasible", "-", "", "Designs with a value for every objective."),
     R("missing", "-", "", "Designs of chunks that failed (allow_partial)."),
+    R("infeasible.*", "-", "", "Infeasible designs per reason code: refused (the process "
+      "refuses them), no-value (no value for some objective), failed (their run failed)."),
     R("infeasible_reasons[].designs", "-", "", "Designs infeasible for this reason."),
     R("pareto_size", "-", "", "Non-dominated designs."),
     *prefixed("pareto[]", _DESIGN),

@@ -38,7 +38,8 @@ __all__ = ["MAX_DESIGNS", "MAX_OBJECTIVES", "SampleSpec", "StudySpec"]
 MAX_DESIGNS = 1_000_000
 MAX_OBJECTIVES = 3
 MAX_VARIED = 6
-MAX_CHUNK = 100_000
+#: Most designs one chunk may hold (a batched chunk of a cheap kernel holds many).
+MAX_CHUNK = MAX_DESIGNS
 #: Processes a study cannot evaluate: itself and its own chunks.
 NOT_STUDIED = frozenset({"design-study", "design-study-chunk"})
 
@@ -152,6 +153,14 @@ class StudySpec(FrozenSpec):
         False,
         description="A chunk that fails after its attempts: report its designs as missing "
         "instead of failing the study.",
+    )
+    engine: Literal["auto", "batched", "per-design"] = Field(
+        "auto",
+        description="How the designs are evaluated: 'batched' through the process's study "
+        "kernel (many designs at once, the same numbers; its result paths say "
+        "\"kernel\": true), 'per-design' by running the whole process once per design (the "
+        "reference), or 'auto' (the default): batched whenever the kernel covers every "
+        "objective and every varied input. 'batched' is refused when it cannot be.",
     )
     best_count: int = Field(5, ge=1, le=100, description="Best designs listed per objective.")
     plots: bool = Field(True, description="Render the study's plots (PNG/SVG).")

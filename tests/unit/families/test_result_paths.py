@@ -106,10 +106,13 @@ def test_declarations_are_well_formed(definition: ProcessDefinition) -> None:
             text = plain_symbol(entry.symbol)
             assert text and not set(text) & set("\\{}$"), (entry.symbol, text)
     described = definition.describe()["result_paths"]
+    covered = set(definition.study_kernel.covers) if definition.study_kernel else set()
+    assert covered <= set(paths), sorted(covered - set(paths))  # a kernel covers declarations
     assert described == [
-        {"path": e.path, "unit": e.unit, "symbol": e.symbol, "description": e.description}
+        {"path": e.path, "unit": e.unit, "symbol": e.symbol, "description": e.description,
+         **({"kernel": True} if e.path in covered else {})}
         for e in definition.result_paths
-    ]
+    ]  # fmt: skip
 
 
 @pytest.mark.slow

@@ -32,6 +32,7 @@ from worker.families.chains.specs import (
     MAX_SINGLE_LOOP_LINKS,
     ChainParallelismSpec,
 )
+from worker.families.chains.study import CHAIN_PARALLELISM_KERNEL, FOURBAR_GRASHOF_KERNEL
 from worker.processes import ProcessDefinition, figure_files
 
 __all__ = ["CHAIN_PARALLELISM", "FOURBAR_GRASHOF", "PROCESSES"]
@@ -53,6 +54,7 @@ CHAIN_PARALLELISM = ProcessDefinition(
     id="chain-parallelism",
     version="1.1.0",  # chain_graphs: Q with its unit
     result_paths=CHAIN_PARALLELISM_RESULT_PATHS,
+    study_kernel=CHAIN_PARALLELISM_KERNEL,
     title="Kinematic chains: uniform rigidity (P) and parallelism (Q)",
     method_doc="chains",
     files=(
@@ -103,6 +105,7 @@ CHAIN_PARALLELISM = ProcessDefinition(
 FOURBAR_GRASHOF = ProcessDefinition(
     id="fourbar-grashof",
     result_paths=FOURBAR_GRASHOF_RESULT_PATHS,
+    study_kernel=FOURBAR_GRASHOF_KERNEL,
     title="Four-bar chain: Grashof type, Barker's class and fully turning links",
     method_doc="chains",
     files=figure_files("fourbar_motion", "Range of motion and fully turning links"),

@@ -22,6 +22,7 @@ from pydantic import (
     StringConstraints,
     Tag,
     ValidationError,
+    ValidationInfo,
     model_validator,
 )
 from pydantic_core import InitErrorDetails, PydanticCustomError
@@ -29,6 +30,7 @@ from pydantic_core import InitErrorDetails, PydanticCustomError
 from worker.common.numeric_ranges import PositiveLength, length_ratio_problem, ratio_schema
 from worker.common.specs import FrozenSpec
 from worker.families.chains import kinematics as chains
+from worker.study_kernels import in_study_template
 
 __all__ = [
     "MAX_CHAINS",
@@ -255,7 +257,11 @@ class ChainParallelismSpec(FrozenSpec):
     plots: bool = plots_field()
 
     @model_validator(mode="after")
-    def _valid_chains(self) -> ChainParallelismSpec:
+    def _valid_chains(self, info: ValidationInfo) -> ChainParallelismSpec:
+        """Every chain valid, the chains comparable.  A design study's template leaves
+        out what depends on the lengths (their spread, whether polygons and loops
+        close): its kernel checks that design by design (worker.families.chains.study)."""
+        template = in_study_template(info.context)
         errors: list[InitErrorDetails] = []
         seen: dict[str, int] = {}
         for index, chain in enumerate(self.chains):
@@ -272,11 +278,11 @@ class ChainParallelismSpec(FrozenSpec):
                 )
             seen.setdefault(chain.name, index)
             spread = length_ratio_problem(_all_lengths(chain), f"chains[{index}]")
-            if spread is not None:
+            if spread is not None and not template:
                 field = "lengths" if isinstance(chain, LoopChain) else "links"
                 errors.append(chain_error(("chains", index, field), spread, None))
                 continue
-            for problem in chains.chain_problems(to_chain(chain)):
+            for problem in chains.chain_problems(to_chain(chain), geometry=not template):
                 where = ("chains", index, *problem.where)
                 errors.append(
                     chain_error(

@@ -46,6 +46,7 @@ from worker.families.spherical_parallel.result_paths import (
     OPTIMISATION_RESULT_PATHS,
 )
 from worker.families.spherical_parallel.specs import ConditioningMapSpec, DesignSpaceSpec
+from worker.families.spherical_parallel.study import CONDITIONING_MAP_KERNEL
 from worker.processes import ProcessDefinition, ProcessFile, data_files, figure_files
 
 __all__ = ["CONDITIONING_MAP", "DESIGN_SPACE", "OPTIMISATION", "PROCESSES"]
@@ -90,6 +91,7 @@ CONDITIONING_MAP = ProcessDefinition(
     id="spm-conditioning-map",
     version="1.1.0",  # torsion_sweeps: 1/kappa [-]
     result_paths=CONDITIONING_MAP_RESULT_PATHS,
+    study_kernel=CONDITIONING_MAP_KERNEL,
     paper_points=CONDITIONING_MAP_PAPER_POINTS,
     title="Spherical parallel manipulator: conditioning over a workspace",
     method_doc="spherical-parallel",

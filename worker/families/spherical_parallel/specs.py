@@ -12,10 +12,10 @@ optimisation's in :mod:`worker.families.spherical_parallel.optimisation_spec`.
 from __future__ import annotations
 
 import math
-from collections.abc import Iterator
-from typing import Annotated, Any
+from typing import Annotated
 
-from pydantic import Field, field_validator, model_validator
+import numpy as np
+from pydantic import Field, ValidationInfo, field_validator, model_validator
 
 from worker.common.field_errors import field_error
 from worker.families.spherical_parallel.design_space_spec import (
@@ -35,6 +35,7 @@ from worker.families.spherical_parallel.workspace_spec import (
     WorkspaceSpec,
     entries,
 )
+from worker.study_kernels import in_study_template
 
 __all__ = [
     "MAX_BETAS",
@@ -142,19 +143,18 @@ class ConditioningMapSpec(_Design):
     )
 
     @model_validator(mode="after")
-    def _design_reaches_the_workspace(self) -> ConditioningMapSpec:
+    def _design_reaches_the_workspace(self, info: ValidationInfo) -> ConditioningMapSpec:
         """Refuse a design whose legs close (eq 12) at no orientation of the workspace:
         every map would be empty.  Checked on the boundary-inclusive grid of the
         closed workspace (22,464 orientations, a few milliseconds), the equal-weight
         samples and, before refusing, a grid ten times denser; closure does not depend
-        on the branch."""
-        from worker.families.spherical_parallel.kinematics import (
-            SpmDesign,
-            Workspace,
-            boundary_grid,
-            inverse_kinematics,
-            orientation_samples,
-        )
+        on the branch.  A design study's template skips it: its kernel makes the same
+        check (:func:`~worker.families.spherical_parallel.kinematics.reach.reaching`)
+        design by design."""
+        if in_study_template(info.context):
+            return self
+        from worker.families.spherical_parallel.kinematics import SpmDesign, Workspace
+        from worker.families.spherical_parallel.kinematics.reach import ReachGrids, reaching
 
         ws_spec = self.workspace
         lo, hi = (math.radians(a) for a in ws_spec.torsion_deg)
@@ -166,17 +166,9 @@ class ConditioningMapSpec(_Design):
         design = SpmDesign.from_degrees(
             self.alpha1_deg, self.alpha2_deg, self.beta_deg, self.gamma_deg
         )
-
-        # A coarse grid first (a few ms); before refusing, one 10x denser (a rare path),
-        # so a design that reaches only a sliver of the workspace is not refused.
-        def grids() -> Iterator[Any]:
-            yield boundary_grid(ws)
-            yield orientation_samples(ws)[0]
-            yield boundary_grid(ws, azimuth=48, tilt=31, torsion=144)
-
-        for grid in grids():
-            if bool(inverse_kinematics(design, grid, self.branch)[1].any()):
-                return self
+        angles = [[design.alpha1, design.alpha2, design.beta, design.gamma]]
+        if bool(reaching(np.asarray(angles), ReachGrids(ws))[0]):
+            return self
         raise field_error(
             self, "workspace",
             f"the design (alpha1, alpha2, beta, gamma) = ({self.alpha1_deg:g}, "

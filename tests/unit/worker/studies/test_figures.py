@@ -73,3 +73,18 @@ def test_the_front_is_drawn_over_the_papers_designs() -> None:
     assert all(isinstance(p, Line2D) and p.get_markerfacecolor() == "none" for p in papers)
     assert {p.get_marker() for p in papers}.isdisjoint({"o", "."})
     assert not figure_defects(fig)
+
+
+def test_a_large_cloud_is_an_image_in_the_svg() -> None:
+    """200,000 designs in the objective space: the cloud and a long front are drawn as
+    images inside the SVG, which stays small (vector markers made ~40 MB)."""
+    from worker.common.figures import figure_artifacts
+
+    rng = np.random.default_rng(2)
+    values = rng.random((200_000, 2))
+    front = np.flatnonzero(values.sum(axis=1) < 0.1)
+    labels = [objective_label("a", "", "-"), objective_label("b", "", "-")]
+    fig = pareto_figure(values, front, labels, ["min", "min"], "t")
+    _, svg = figure_artifacts(fig, "pareto", "t")
+    assert len(svg.data) < 3_000_000
+    assert b"<image" in svg.data

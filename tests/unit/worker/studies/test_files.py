@@ -38,7 +38,8 @@ def test_objective_columns_carry_the_declared_units() -> None:
     data = files(ARM)
     header = next(csv.reader(io.StringIO(data["designs.csv"].decode())))
     assert header == ["index [-]", "links_0 [cm]", "links_2 [cm]", "task_points_d_z_min [-]",
-                      "links_sum [cm]", "areas_reachable [cm^2]", "feasible [-]"]  # fmt: skip
+                      "links_sum [cm]", "areas_reachable [cm^2]", "feasible [-]",
+                      "reason_code [-]"]  # fmt: skip
     with np.load(io.BytesIO(data["designs.npz"])) as npz:
         assert npz["objective_units"].tolist() == ["-", "cm", "cm^2"]
         assert npz["objective_symbols"].tolist() == ["$d_z$", "$l_i$", ""]

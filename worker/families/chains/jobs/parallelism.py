@@ -19,14 +19,13 @@ from worker.common.figures import figure_artifacts, plain_text
 from worker.contract import Artifact, JobContext, JobOutcome
 from worker.families.chains import kinematics as chains
 from worker.families.chains.errata import parallelism_errata_notes
+from worker.families.chains.kinematics.measures import SUMS_RTOL
 from worker.families.chains.plots import bars as bar_plots
 from worker.families.chains.plots import graphs as graph_plots
 from worker.families.chains.specs import ChainParallelismSpec, LoopChain, to_chain
 
 __all__ = ["SUMS_RTOL", "chain_entry", "rankings", "run_chain_parallelism"]
 
-#: Total lengths within this relative difference count as equal (then Q ranks as is).
-SUMS_RTOL = 1e-9
 
 _P_READING = (
     "Larger P: link lengths nearer to equal, so more uniformly rigid links (eq 1, of the "

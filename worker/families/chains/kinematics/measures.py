@@ -4,15 +4,17 @@ of a single loop ranked by them (see :mod:`worker.families.chains.kinematics`)."
 from __future__ import annotations
 
 import itertools
-import math
 from dataclasses import dataclass
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 __all__ = [
+    "SUMS_RTOL",
+    "TIE_RTOL",
     "RankedArrangements",
     "adjacent_products",
+    "close_values",
     "distinct_cyclic_arrangements",
     "grubler_mobility",
     "length_product",
@@ -21,12 +23,16 @@ __all__ = [
     "normalized_length_product",
     "ranked_arrangements",
     "tie_ranks",
+    "tie_ranks_rows",
 ]
 
 FloatArray = NDArray[np.float64]
 IntArray = NDArray[np.int64]
 #: Relative tolerance under which two values of P or Q count as tied.
 TIE_RTOL = 1e-12
+#: Chains' total lengths within this relative difference count as equal (then Q ranks
+#: them as it is; otherwise normalised Q does).
+SUMS_RTOL = 1e-9
 
 
 # -- measures ------------------------------------------------------------------------
@@ -67,20 +73,38 @@ def grubler_mobility(links: int, joints: int) -> int:
     return 3 * (links - 1) - 2 * joints
 
 
+def close_values(a: FloatArray, b: FloatArray, rel_tol: float) -> NDArray[np.bool_]:
+    """:func:`math.isclose` (``abs_tol`` 0) elementwise, exactly as CPython decides it."""
+    diff = np.abs(b - a)
+    with np.errstate(invalid="ignore"):
+        near = (diff <= np.abs(rel_tol * b)) | (diff <= np.abs(rel_tol * a))
+    finite = np.isfinite(a) & np.isfinite(b)
+    return np.asarray((a == b) | (near & finite))
+
+
+def tie_ranks_rows(values: ArrayLike, *, descending: bool) -> tuple[IntArray, IntArray]:
+    """:func:`tie_ranks` of every row of ``values`` (m, k) at once: ``(order, ranks)``,
+    each (m, k)."""
+    arr = np.asarray(values, dtype=np.float64)
+    order = np.argsort(-arr if descending else arr, axis=-1, kind="stable")
+    ranked = np.take_along_axis(arr, order, axis=-1)
+    tied = np.zeros(arr.shape, dtype=bool)
+    tied[:, 1:] = close_values(ranked[:, 1:], ranked[:, :-1], TIE_RTOL)
+    positions = np.broadcast_to(np.arange(1, arr.shape[-1] + 1), arr.shape)
+    by_position = np.maximum.accumulate(np.where(tied, 0, positions), axis=-1)
+    ranks = np.empty_like(order)
+    np.put_along_axis(ranks, order, by_position, axis=-1)
+    return order.astype(np.int64), ranks.astype(np.int64)
+
+
 def tie_ranks(values: ArrayLike, *, descending: bool) -> tuple[IntArray, IntArray]:
     """``(order, ranks)``: indices best first and 1-based competition ranks (1, 2, 2, 4).
 
     Values within :data:`TIE_RTOL` of the previous one share its rank; the sort is
     stable, so tied entries keep their given order.  ``values`` (k,).
     """
-    arr = np.asarray(values, dtype=np.float64)
-    order = np.argsort(-arr if descending else arr, kind="stable")
-    ranks = np.empty(arr.size, dtype=np.int64)
-    for position, index in enumerate(order):
-        previous = arr[order[position - 1]] if position else math.nan
-        tied = position and math.isclose(arr[index], previous, rel_tol=TIE_RTOL, abs_tol=0.0)
-        ranks[index] = ranks[order[position - 1]] if tied else position + 1
-    return order.astype(np.int64), ranks
+    order, ranks = tie_ranks_rows(np.asarray(values, dtype=np.float64)[None], descending=descending)
+    return order[0], ranks[0]
 
 
 # -- cyclic arrangements of a single loop --------------------------------------------

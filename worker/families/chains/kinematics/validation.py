@@ -19,7 +19,7 @@ from worker.families.chains.kinematics.chain import (
 __all__ = ["chain_problems"]
 
 
-def chain_problems(chain: Chain) -> list[ChainProblem]:
+def chain_problems(chain: Chain, *, geometry: bool = True) -> list[ChainProblem]:
     """Everything wrong with a chain description, stage by stage; [] if it is valid.
 
     Stages (a later stage runs only when the earlier ones pass, so one mistake is
@@ -29,9 +29,11 @@ def chain_problems(chain: Chain) -> list[ChainProblem]:
     the number of loops Euler's formula asks for, every joint bordering two loops,
     binary links with two joints, polygon sides meeting at its corners); geometry
     (every polygonal link and every loop can close: each side shorter than the sum of
-    the others).
+    the others).  ``geometry=False`` leaves the last stage out (a design study's
+    kernel checks it per design, from the lengths).
     """
-    for stage in (_name_problems, _use_problems, _structure_problems, _geometry_problems):
+    stages = [_name_problems, _use_problems, _structure_problems]
+    for stage in (*stages, _geometry_problems) if geometry else stages:
         problems = stage(chain)
         if problems:
             return problems

@@ -9,7 +9,6 @@ for every design. Angles are in radians.
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 from typing import NamedTuple
 
@@ -17,7 +16,6 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from worker.common.parameter_errors import bad_parameter
-from worker.families.spherical_parallel.kinematics.legs import REAL_TOLERANCE
 from worker.families.spherical_parallel.kinematics.model import (
     BoolArray,
     FloatArray,
@@ -29,6 +27,13 @@ from worker.families.spherical_parallel.kinematics.model import (
     checked_workspace,
 )
 from worker.families.spherical_parallel.kinematics.sampling import boundary_grid
+from worker.families.spherical_parallel.kinematics.study_kernel import (
+    PoseArrays,
+    design_trig,
+    evaluate_poses,
+    least_inverse_condition,
+    summarise,
+)
 
 __all__ = [
     "Indices",
@@ -52,24 +57,6 @@ class PoseBatch(NamedTuple):
 
 
 _ETA = 2.0 * np.pi * np.arange(3) / 3.0
-_COS_ETA = np.cos(_ETA)[:, None]
-_SIN_ETA = np.sin(_ETA)[:, None]
-_TINY = 1e-300
-
-
-def _inverse_condition_legs_first(a: FloatArray, b: FloatArray) -> tuple[FloatArray, FloatArray]:
-    """:func:`~.legs.inverse_condition_rows` for
-    a (xyz, leg, n) and b (leg, n)."""
-    aj, ak = a[:, [1, 2, 0]], a[:, [2, 0, 1]]
-    c = np.stack([aj[1] * ak[2] - aj[2] * ak[1], aj[2] * ak[0] - aj[0] * ak[2],
-                  aj[0] * ak[1] - aj[1] * ak[0]])  # fmt: skip
-    det_a = (a[:, 0] * c[:, 0]).sum(axis=0)
-    pair = b[[1, 2, 0]] * b[[2, 0, 1]]
-    norms = np.sqrt(((pair * pair) * (a * a).sum(axis=0)).sum(axis=0)
-                    * ((b * b) * (c * c).sum(axis=0)).sum(axis=0))  # fmt: skip
-    numerator = 3.0 * np.abs(det_a * b[0] * b[1] * b[2])
-    inverse = np.divide(numerator, norms, out=np.zeros_like(numerator), where=norms > 0.0)
-    return np.minimum(inverse, 1.0), det_a
 
 
 @dataclass(frozen=True, eq=False)
@@ -110,41 +97,13 @@ class SampleSet:
         return cls(arr, terms)
 
     def evaluate(self, design: SpmDesign, branch: int) -> PoseBatch:
-        """1/kappa, closure, theta and det(A) at every sample (no input checks).
-
-        The closed form of :func:`~.legs.solve_legs`
-        in the leg frames, with cos/sin th_i taken from the root without trigonometry.
-        """
-        sb, cb = math.sin(design.beta), math.cos(design.beta)
-        sg, cg = math.sin(design.gamma), math.cos(design.gamma)
-        sa1, ca1 = math.sin(design.alpha1), math.cos(design.alpha1)
-        hk, hh, hz, zk, zh, zz = self.frame_terms
-        vk, vh, vz = sb * hk + cb * zk, sb * hh + cb * zh, sb * hz + cb * zz
-        p = (ca1 * sg) * vh - (ca1 * cg) * vz - math.cos(design.alpha2)
-        qc = (sa1 * cg) * vh + (sa1 * sg) * vz
-        r = sa1 * vk
-        rho2 = qc * qc + r * r
-        disc = rho2 - p * p
-        real_legs = np.abs(p) <= np.sqrt(rho2) + REAL_TOLERANCE
-        root = np.sqrt(np.maximum(disc, 0.0))
-        # th = atan2(R, Qc) - branch * acos(-P / rho), expanded; rho = 0 gives w = cos(a1) u.
-        scale = 1.0 / np.maximum(rho2, _TINY)
-        cos_th = (branch * r * root - p * qc) * scale
-        sin_th = (-branch * qc * root - p * r) * scale
-        wk = sa1 * sin_th
-        wh = (sa1 * cg) * cos_th + ca1 * sg
-        wz = (sa1 * sg) * cos_th - ca1 * cg
-        ak, ah = wh * vz - wz * vh, wz * vk - wk * vz
-        a = np.stack([ak * _COS_ETA - ah * _SIN_ETA, ak * _SIN_ETA + ah * _COS_ETA,
-                      wk * vh - wh * vk])  # fmt: skip
-        inverse, det_a = _inverse_condition_legs_first(a, branch * root)
-        real = real_legs.all(axis=0)
-        theta = np.where(real_legs, np.arctan2(sin_th, cos_th), np.nan).T
-        if real.all():
-            return PoseBatch(inverse, real, theta, det_a)
-        return PoseBatch(
-            np.where(real, inverse, np.nan), real, theta, np.where(real, det_a, np.nan)
-        )
+        """1/kappa, closure, theta and det(A) at every sample (no input checks): the
+        batched kernel (:func:`~.study_kernel.evaluate_poses`) with one design."""
+        angles = np.array([[design.alpha1, design.alpha2, design.beta, design.gamma]])
+        poses = evaluate_poses(self.frame_terms, design_trig(angles), branch)
+        assert poses.theta is not None
+        return PoseBatch(poses.inverse_condition[0], poses.real[0], poses.theta[0],
+                         poses.det_a[0])  # fmt: skip
 
 
 @dataclass(frozen=True, eq=False)
@@ -175,24 +134,18 @@ class Indices:
 
 
 def indices_from_batch(batch: PoseBatch, branch: int) -> Indices:
-    """Summarise a :class:`PoseBatch` into :class:`Indices`."""
+    """Summarise a :class:`PoseBatch` into :class:`Indices` (by the batched
+    :func:`~.study_kernel.summarise`, with one design)."""
     for arr in batch:
         arr.flags.writeable = False
-    q = batch.inverse_condition
-    all_real = bool(np.all(batch.real))
-    if all_real:
-        mean_square = float(np.mean(q * q))
-        summary = (
-            float(np.sqrt(mean_square)),
-            mean_square,
-            float(np.mean(q)),
-            float(np.min(q)),
-            float(np.max(q)),
-            float(np.min(np.abs(batch.det_a))),
-        )
-    else:
-        summary = (np.nan,) * 6
-    return Indices(*summary, all_real, branch, *batch)
+    poses = PoseArrays(batch.inverse_condition[None], batch.real[None], None,
+                       batch.det_a[None])  # fmt: skip
+    s = summarise(poses)
+    return Indices(
+        float(s.rms_inverse_condition[0]), float(s.mean_square_inverse_condition[0]),
+        float(s.gci[0]), float(s.min_inverse_condition[0]), float(s.max_inverse_condition[0]),
+        float(s.min_abs_det_a[0]), bool(s.all_real[0]), branch, *batch,
+    )  # fmt: skip
 
 
 def workspace_indices(design: SpmDesign, samples: ArrayLike, branch: int = -1) -> Indices:
@@ -240,7 +193,9 @@ def workspace_minimum(
     sign = checked_branch(branch, function)
     points = boundary_grid(ws, *grid)
     batch = SampleSet.from_samples(points, function).evaluate(design, sign)
-    q = np.where(batch.real, batch.inverse_condition, np.inf)
-    best = int(np.argmin(q))
-    value = float(q[best]) if np.isfinite(q[best]) else np.nan
-    return WorkspaceMinimum(value, points[best].copy(), bool(np.all(batch.real)), len(points))
+    poses = PoseArrays(batch.inverse_condition[None], batch.real[None], None,
+                       batch.det_a[None])  # fmt: skip
+    least, at = least_inverse_condition(poses)
+    best = int(at[0])
+    return WorkspaceMinimum(float(least[0]), points[best].copy(), bool(np.all(batch.real)),
+                            len(points))  # fmt: skip
