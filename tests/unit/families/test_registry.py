@@ -12,7 +12,8 @@ from pathlib import Path
 
 import pytest
 
-from worker.processes import ProcessDefinition, default_registry
+from worker.processes import ProcessDefinition
+from worker.registry import default_registry
 
 ROOT = Path(__file__).resolve().parents[3]
 FAMILIES = sorted(p.parent.name for p in (ROOT / "worker/families").glob("*/__init__.py"))

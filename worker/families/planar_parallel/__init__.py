@@ -34,9 +34,9 @@ from worker.families.planar_parallel.result_paths import (
     OPTIMISATION_RESULT_PATHS,
 )
 from worker.families.planar_parallel.specs import ConditioningMapSpec, OptimisationSpec
-from worker.processes import ProcessDefinition, ProcessFile, data_files, figure_files
+from worker.processes import FamilyInfo, ProcessDefinition, ProcessFile, data_files, figure_files
 
-__all__ = ["CONDITIONING_MAP", "OPTIMISATION", "PROCESSES"]
+__all__ = ["CONDITIONING_MAP", "FAMILY", "OPTIMISATION", "PROCESSES"]
 
 
 def _run_conditioning_map(spec: ConditioningMapSpec, ctx: JobContext) -> JobOutcome:
@@ -172,6 +172,17 @@ OPTIMISATION = ProcessDefinition(
     cost_limit=OPTIMISATION_COST_LIMIT,
     cost_unit=COST_UNIT,
     time_limit_s=OPTIMISATION_TIME_LIMIT_S,
+)
+
+#: Who this family is: the tag its operations are listed under, and its paper.
+FAMILY = FamilyInfo(
+    name="planar_parallel",
+    tag="2-DOF planar parallel robots",
+    description=(
+        "Huang et al. 2004: conditioning and pressure-angle maps, the workspace bounded "
+        "by a conditioning limit, the largest rectangle, η, the optimum."
+    ),
+    paper="Huang et al. 2004",
 )
 
 #: This family's processes, in the order GET /v1/processes lists them.

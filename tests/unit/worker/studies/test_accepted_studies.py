@@ -11,16 +11,16 @@ from typing import Any
 
 from hypothesis import event, example, given
 
+from tests.unit.worker.studies.registry import STUDY, dry_check
 from tests.unit.worker.studies.study_requests import (
     property_settings,
     sound_study_bodies,
     study_bodies,
 )
 from worker.errors import InvalidInputs
-from worker.processes import default_registry
+from worker.registry import default_registry
 from worker.studies.chunk import ChunkSpec
 from worker.studies.evaluation import evaluate_block
-from worker.studies.process import STUDY, dry_check
 from worker.studies.spec import StudySpec
 from worker.submission import validate_inputs
 

@@ -9,7 +9,7 @@ import pytest
 from pydantic import ValidationError
 
 from tests.unit.families.conftest import RecordingContext
-from worker.processes import default_registry
+from worker.registry import default_registry
 from worker.studies.evaluation import design_inputs, evaluate_block
 from worker.studies.spec import StudySpec
 
