@@ -20,6 +20,8 @@ def _process(process_id: str) -> ProcessDefinition:
 
 STUDY = _process("design-study")
 CHUNK = _process("design-study-chunk")
+#: The study's inputs model, which checks ``process`` against the registry.
+STUDY_INPUTS = STUDY.inputs_model
 
 
 def dry_check(spec: StudySpec) -> list[dict[str, Any]]:

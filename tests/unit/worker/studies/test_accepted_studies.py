@@ -44,7 +44,7 @@ def accepted(inputs: dict[str, Any]) -> StudySpec | None:
 
 def check_in_the_worker(spec: StudySpec) -> None:
     stored = json.loads(json.dumps(spec.model_dump(mode="json")))
-    again = StudySpec.model_validate(stored)  # what the worker's split validates
+    again = STUDY.inputs_model.model_validate(stored)  # what the worker validates
     assert again == spec
     assert STUDY.fan_out is not None
     chunks = STUDY.fan_out.split(again)
