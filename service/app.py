@@ -78,6 +78,7 @@ def _start_sweeper(
 ) -> Sweeper | None:
     if not settings.broker_url:
         return None
+    # optional: Celery is loaded only with a broker
     from worker.dispatch.celery.dispatch import Sweeper
 
     sweeper = Sweeper(settings, store, dispatcher)

@@ -39,12 +39,14 @@ __all__ = ["CHAIN_PARALLELISM", "FAMILY", "FOURBAR_GRASHOF", "PROCESSES"]
 
 
 def _run_chain_parallelism(spec: ChainParallelismSpec, ctx: JobContext) -> JobOutcome:
+    # lazy: the job module (matplotlib, scipy) loads when a job runs, not with the registry
     from worker.families.chains.jobs.parallelism import run_chain_parallelism
 
     return run_chain_parallelism(spec, ctx)
 
 
 def _run_fourbar_grashof(spec: FourBarGrashofSpec, ctx: JobContext) -> JobOutcome:
+    # lazy: the job module (matplotlib, scipy) loads when a job runs, not with the registry
     from worker.families.chains.jobs.fourbar import run_fourbar_grashof
 
     return run_fourbar_grashof(spec, ctx)

@@ -40,12 +40,14 @@ __all__ = ["CONDITIONING_MAP", "FAMILY", "OPTIMISATION", "PROCESSES"]
 
 
 def _run_conditioning_map(spec: ConditioningMapSpec, ctx: JobContext) -> JobOutcome:
+    # lazy: the job module (matplotlib, scipy) loads when a job runs, not with the registry
     from worker.families.planar_parallel.jobs.conditioning_map import run_conditioning_map
 
     return run_conditioning_map(spec, ctx)
 
 
 def _run_optimisation(spec: OptimisationSpec, ctx: JobContext) -> JobOutcome:
+    # lazy: the job module (matplotlib, scipy) loads when a job runs, not with the registry
     from worker.families.planar_parallel.jobs.optimisation import run_optimisation
 
     return run_optimisation(spec, ctx)

@@ -44,18 +44,21 @@ __all__ = ["DESIGN", "DEXTERITY_MAP", "FAMILY", "PROCESSES", "SYNTHESIS"]
 
 
 def _run_dexterity_map(spec: DexterityMapSpec, ctx: JobContext) -> JobOutcome:
+    # lazy: the job module (matplotlib, scipy) loads when a job runs, not with the registry
     from worker.families.planar_serial.jobs.dexterity_map import run_dexterity_map
 
     return run_dexterity_map(spec, ctx)
 
 
 def _run_synthesis(spec: SynthesisSpec, ctx: JobContext) -> JobOutcome:
+    # lazy: the job module (matplotlib, scipy) loads when a job runs, not with the registry
     from worker.families.planar_serial.jobs.synthesis import run_synthesis
 
     return run_synthesis(spec, ctx)
 
 
 def _run_design(spec: DesignSpec, ctx: JobContext) -> JobOutcome:
+    # lazy: the job module (matplotlib, scipy) loads when a job runs, not with the registry
     from worker.families.planar_serial.jobs.optimal_links import run_design
 
     return run_design(spec, ctx)

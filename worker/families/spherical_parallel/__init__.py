@@ -53,18 +53,21 @@ __all__ = ["CONDITIONING_MAP", "DESIGN_SPACE", "FAMILY", "OPTIMISATION", "PROCES
 
 
 def _run_conditioning_map(spec: ConditioningMapSpec, ctx: JobContext) -> JobOutcome:
+    # lazy: the job module (matplotlib, scipy) loads when a job runs, not with the registry
     from worker.families.spherical_parallel.jobs.conditioning_map import run_conditioning_map
 
     return run_conditioning_map(spec, ctx)
 
 
 def _run_design_space(spec: DesignSpaceSpec, ctx: JobContext) -> JobOutcome:
+    # lazy: the job module (matplotlib, scipy) loads when a job runs, not with the registry
     from worker.families.spherical_parallel.jobs.design_space import run_design_space
 
     return run_design_space(spec, ctx)
 
 
 def _run_optimisation(spec: OptimisationSpec, ctx: JobContext) -> JobOutcome:
+    # lazy: the job module (matplotlib, scipy) loads when a job runs, not with the registry
     from worker.families.spherical_parallel.jobs.optimisation import run_optimisation
 
     return run_optimisation(spec, ctx)
