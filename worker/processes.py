@@ -247,21 +247,21 @@ class FamilyPackage(Protocol):
 
 class ProcessRegistry:
     """Process definitions by ID, in the order they were registered, and the family of
-    each (``families``: the packages whose processes come first; ``more``: processes of
-    no family, such as ``design-study``)."""
+    each: the processes of ``families`` first, then ``definitions``, processes of no
+    family (``design-study``)."""
 
     def __init__(
         self,
-        more: Iterable[ProcessDefinition] = (),
+        definitions: Iterable[ProcessDefinition] = (),
         *,
         families: Iterable[FamilyPackage] = (),
     ) -> None:
         packages = tuple(families)
         self._families = tuple(p.FAMILY for p in packages)
         self._family_of = {d.id: p.FAMILY for p in packages for d in p.PROCESSES}
-        definitions = (*(d for p in packages for d in p.PROCESSES), *more)
-        self._by_id = {d.id: d for d in definitions}
-        if len(self._by_id) != len(definitions):
+        listed = (*(d for p in packages for d in p.PROCESSES), *definitions)
+        self._by_id = {d.id: d for d in listed}
+        if len(self._by_id) != len(listed):
             raise ValueError("process IDs must be unique")
         if len({f.name for f in self._families}) != len(self._families):
             raise ValueError("family names must be unique")
