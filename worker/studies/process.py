@@ -243,7 +243,9 @@ def run_in_process(studied: ProcessRegistry, spec: StudySpec, ctx: JobContext) -
                 stored[(f"chunk-{n}", artifact.name)] = artifact.data
             yield ChildEnd(f"chunk-{n}", JobStatus.SUCCESSFUL, None), outcome.result
 
-    files = lambda job_id, name: stored.get((job_id, name))  # noqa: E731
+    def files(job_id: str, name: str) -> bytes | None:
+        return stored.get((job_id, name))
+
     return assemble(studied, spec, children(), files, ctx)
 
 
