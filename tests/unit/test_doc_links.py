@@ -180,6 +180,22 @@ def test_every_relative_link_resolves_inside_the_repository() -> None:
     assert not broken, "\n".join(broken)
 
 
+def test_a_method_page_links_only_what_the_service_serves() -> None:
+    """The service serves docs/methods/<page>.md at ``/methods/<page>`` and the index
+    (docs/README.md) as ``/methods``, and nothing else of docs/: a link from a method page
+    to another file would be a dead link on the service's page."""
+    methods = DOCS / "methods"
+    offending = [
+        str(link)
+        for page in sorted(methods.glob("*.md"))
+        for link in links(page)
+        if not SCHEME.match(link.target)
+        and (path := link.target.partition("#")[0])
+        and (page.parent / path).resolve() not in {*methods.glob("*.md"), DOCS / "README.md"}
+    ]
+    assert not offending, "\n".join(offending)
+
+
 def test_no_link_names_a_path_on_this_machine() -> None:
     """``file:`` URLs point outside the repository too."""
     offending = [
