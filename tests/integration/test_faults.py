@@ -3,8 +3,8 @@ disk, a corrupted store, heavy downloads and bodies, many waiters, racing submit
 
 Every test drives real `dexlab serve` / `dexlab worker` processes (or, for the pool's
 back-off, a real :class:`worker.pool.WorkerPool` with real children) and real signals,
-and asserts what a client sees and what the store keeps.  The README's reliability
-table is the contract.
+and asserts what a client sees and what the store keeps.  The fault table of
+docs/reliability.md is the contract.
 """
 
 from __future__ import annotations
