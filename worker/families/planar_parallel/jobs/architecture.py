@@ -18,7 +18,13 @@ from worker.families.planar_parallel.kinematics import study_kernel
 from worker.families.planar_parallel.kinematics.study_kernel import DEFAULT_GRID_MARGIN
 from worker.families.planar_parallel.specs import ConditioningMapSpec, GridSpec
 
-__all__ = ["DEFAULT_GRID_MARGIN", "architecture_from_spec", "default_bounds", "map_grid"]
+__all__ = [
+    "DEFAULT_GRID_MARGIN",
+    "architecture_from_spec",
+    "default_bounds",
+    "map_grid",
+    "robot_from_spec",
+]
 
 
 def architecture_from_spec(spec: ConditioningMapSpec) -> pp.Architecture:
@@ -26,6 +32,11 @@ def architecture_from_spec(spec: ConditioningMapSpec) -> pp.Architecture:
     if spec.architecture == "isotropic":
         return pp.isotropic_architecture(_l2(spec), spec.l1)
     return pp.Architecture(spec.actuation, spec.l1, _l2(spec), spec.e or 0.0)
+
+
+def robot_from_spec(spec: ConditioningMapSpec) -> pp.Robot:
+    """The job's robot, checked once: its Architecture and working mode."""
+    return pp.Robot(architecture_from_spec(spec), spec.working_mode)
 
 
 def _l2(spec: ConditioningMapSpec) -> float:

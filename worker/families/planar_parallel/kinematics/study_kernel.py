@@ -10,7 +10,7 @@ temporaries stay bounded, with the very formulas of
 :func:`~worker.families.planar_parallel.kinematics.conditioning_map` (so every node's
 value is the job's to the bit). :func:`kappa_region_areas` measures W_kappa0 design by
 design with the job's own column search
-(:func:`~.kappa_region.kappa_region_boundary`): its adaptive refinement is per robot.
+(:func:`~.kappa_region.robot_kappa_region`): its adaptive refinement is per robot.
 
 Internal to the study kernel and the job's grid; no input checks here.
 """
@@ -22,10 +22,11 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import NDArray
 
-from worker.families.planar_parallel.kinematics.kappa_region import kappa_region_boundary
+from worker.families.planar_parallel.kinematics.kappa_region import robot_kappa_region
 from worker.families.planar_parallel.kinematics.model import (
     Architecture,
     FloatArray,
+    Robot,
     WorkingMode,
     chain_components,
     inverse_condition_of_components,
@@ -157,9 +158,8 @@ def kappa_region_areas(
     search with ``search`` = (columns, rows), one design at a time."""
     whole, lowest = np.zeros(len(lengths)), np.zeros(len(lengths))
     for k, (l1, l2, e) in enumerate(lengths.tolist()):
-        arch = Architecture(actuation, l1, l2, e)  # type: ignore[arg-type]
-        region = kappa_region_boundary(arch, float(limit[k]), mode, columns=search[0],
-                                       rows=search[1])  # fmt: skip
+        robot = Robot(Architecture(actuation, l1, l2, e), mode)  # type: ignore[arg-type]
+        region = robot_kappa_region(robot, float(limit[k]), search)
         if region.found:
             whole[k], lowest[k] = region.whole_area, region.rectangle_region_area
     return whole, lowest
