@@ -123,13 +123,17 @@ def test_the_worked_designs_to_the_bit() -> None:
     [({"l1": [1e-12, 1e-6, 2]}, "inputs.l1"), ({"e": [-1, 4.0, 2]}, "inputs.e"),
      ({"e": [1e-7, 0.5, 2]}, "inputs.e"), ({"l2": [1e6, 3e6, 2]}, "inputs.l2"),
      ({"e": [1e-6, 0.3, 2]}, "inputs.e"),
-     ({"inverse_condition_limit": [0.5, 1.0, 2]}, "inputs.inverse_condition_limit")],
+     ({"inverse_condition_limit": [0.5, 1.0, 2]}, "inputs.inverse_condition_limit"),
+     ({"e": [0.3, 3.0, 2]}, "inputs.e"), ({"l1": [1.0, 1e4, 2]}, "inputs.grid.bounds"),
+     ({"l1": [1e-6, 1.0, 2]}, "inputs.l2")],
 )  # fmt: skip
 def test_each_refusal_names_the_process_field(vary: dict[str, list[float]], refused: str) -> None:
     """Out of range, e between 0 and 1e-6 or e >= l1 + l2 (chains that cannot meet),
-    a spread of lengths beyond 1e6 (named at e, the shortest)."""
+    a spread of lengths beyond 1e6 (named at e, the shortest), a grid out of scale."""
     fixed: dict[str, Any] = {"l1": 1.0, "l2": 1.5, "e": 0.3, "inverse_condition_limit": 0.5,
                              "grid": {"points_per_axis": 5}}  # fmt: skip
+    if refused == "inputs.grid.bounds":  # a side of 0.002: a robot of 1e4 is out of scale
+        fixed["grid"]["bounds"] = [-1e-3, 1e-3, -1e-3, 1e-3]
     for name in vary:
         fixed.pop(name)
     inputs = {"process": "planar2dof-conditioning-map", "fixed": fixed, "vary": vary,
@@ -166,3 +170,14 @@ def test_the_kernel_covers_what_it_declares() -> None:
     described = {entry["path"]: entry for entry in process.describe()["result_paths"]}
     assert described["w_kappa0.area"].get("kernel") is True
     assert "kernel" not in described["isotropic_point.x"]
+
+
+def test_the_template_leaves_the_dimensions_to_the_kernel() -> None:
+    """l1 = 2 with l2 varied from its reference 1 (eq 12 needs l2 >= l1): the template
+    validates, the kernel refuses l2 = 1 per design as the process does."""
+    inputs = {"process": "planar2dof-conditioning-map",
+              "fixed": {"l1": 2.0, "architecture": "isotropic", "grid": {"points_per_axis": 9}},
+              "vary": {"l2": [1.0, 4.0, 3]},
+              "objectives": {"summary.inverse_condition.max": "max"}}  # fmt: skip
+    batched, _ = assert_engines_agree(inputs)
+    assert batched.codes.tolist() == [REFUSED, FEASIBLE, FEASIBLE]
