@@ -155,11 +155,16 @@ def kappa_region_areas(
 ) -> tuple[FloatArray, FloatArray]:
     """W_kappa0's area and rectangle-region area (m,) each (0 where it is empty), for
     the designs ``lengths`` (m, 3) at the limits ``limit`` (m,), by the job's column
-    search with ``search`` = (columns, rows), one design at a time."""
+    search with ``search`` = (columns, rows), one design at a time; NaN for a design whose
+    search raises (its job would fail: a study kernel never raises for a design)."""
     whole, lowest = np.zeros(len(lengths)), np.zeros(len(lengths))
     for k, (l1, l2, e) in enumerate(lengths.tolist()):
         robot = Robot(Architecture(actuation, l1, l2, e), mode)  # type: ignore[arg-type]
-        region = robot_kappa_region(robot, float(limit[k]), search)
+        try:
+            region = robot_kappa_region(robot, float(limit[k]), search)
+        except (ArithmeticError, ValueError):
+            whole[k] = lowest[k] = np.nan
+            continue
         if region.found:
             whole[k], lowest[k] = region.whole_area, region.rectangle_region_area
     return whole, lowest
