@@ -17,6 +17,7 @@ from tests.unit.worker.studies.engines import REGISTRY, assert_engines_agree, fi
 from worker.common.grids import WorkspaceGrid
 from worker.families.planar_parallel import kinematics as pp
 from worker.families.planar_parallel.jobs.architecture import default_bounds
+from worker.families.planar_parallel.kinematics import study_kernel
 from worker.families.planar_parallel.kinematics.study_kernel import (
     grid_axes,
     map_summary,
@@ -181,3 +182,21 @@ def test_the_template_leaves_the_dimensions_to_the_kernel() -> None:
               "objectives": {"summary.inverse_condition.max": "max"}}  # fmt: skip
     batched, _ = assert_engines_agree(inputs)
     assert batched.codes.tolist() == [REFUSED, FEASIBLE, FEASIBLE]
+
+
+@pytest.mark.parametrize("tile", [7, 100, 5000])
+def test_tiles_change_nothing(tile: int, monkeypatch: pytest.MonkeyPatch) -> None:
+    """Rows of one design's grid in tiles, or designs in tiles: the same summary (the
+    mean to 1e-14, summed in pieces)."""
+    lengths = np.array([[1.0, 1.5, 0.2], [0.5, 2.0, 0.0], [1.0, 1.0, 1.0]])
+    axes = grid_axes(default_bounds_of(lengths), 41)
+    whole = map_summary("proximal-arm", (1, -1), lengths, axes, np.full(3, 0.3))
+    monkeypatch.setattr(study_kernel, "TILE_NODES", tile)
+    tiled = map_summary("proximal-arm", (1, -1), lengths, axes, np.full(3, 0.3))
+    for name in ("reachable", "minimum", "maximum", "inside"):
+        assert np.array_equal(getattr(whole, name), getattr(tiled, name)), name
+    np.testing.assert_allclose(tiled.mean, whole.mean, rtol=1e-14)
+
+
+def default_bounds_of(lengths: np.ndarray) -> np.ndarray:
+    return study_kernel.default_bounds("proximal-arm", lengths)
