@@ -36,6 +36,8 @@ INPUTS = ("l1", "l2", "e", "inverse_condition_limit")
 HALF_SQRT2 = math.sqrt(0.5)
 _AT_LEAST = "Input should be greater than or equal to {:g}"
 _AT_MOST = "Input should be less than or equal to {:g}"
+#: The fields of RegionNumbers behind each of REGION_PATHS, in order.
+_REGION_FIELDS = ("area", "rectangle_region_area", "largest", "largest_x", "largest_y")
 _RATIO = f"l1, l2 and e: the longest is more than {MAX_LENGTH_RATIO:g} times the shortest"
 
 
@@ -219,14 +221,13 @@ class ConditioningMapPlan:
                 "w_kappa0.area_grid": np.where(no_limit, np.nan, summary.inside * cell),
             }
         if self.wanted & set(REGION_PATHS):
-            whole, lowest = np.full(m, np.nan), np.full(m, np.nan)
+            region = np.full((5, m), np.nan)
             searched = np.flatnonzero(~no_limit)
-            whole[searched], lowest[searched] = kappa_region_areas(
-                t.actuation,
-                t.working_mode,
-                lengths[searched],
-                limit[searched],
+            numbers = kappa_region_areas(
+                t.actuation, t.working_mode, lengths[searched], limit[searched],
                 (BOUNDARY_COLUMNS, BOUNDARY_ROWS),
-            )
-            found |= {"w_kappa0.area": whole, "w_kappa0.rectangle_region_area": lowest}
+            )  # fmt: skip
+            for row, name in enumerate(REGION_PATHS):
+                region[row, searched] = getattr(numbers, _REGION_FIELDS[row])
+                found[name] = region[row]
         return {path: found[path] for path in self.wanted}

@@ -96,7 +96,9 @@ def test_the_map_agrees_with_the_process(inputs: dict[str, Any]) -> None:
 
 
 @settings(SETTINGS, max_examples=12)
-@given(studies(["w_kappa0.area", "w_kappa0.rectangle_region_area", *GRID_OBJECTIVES], 2))
+@given(studies(["w_kappa0.area", "w_kappa0.rectangle_region_area",
+                "w_kappa0.largest_inverse_condition.value", "w_kappa0.largest_inverse_condition.y",
+                *GRID_OBJECTIVES], 2))  # fmt: skip
 def test_w_kappa0_agrees_with_the_process(inputs: dict[str, Any]) -> None:
     assert_engines_agree(inputs)
 

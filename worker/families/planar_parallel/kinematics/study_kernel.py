@@ -36,6 +36,7 @@ __all__ = [
     "DEFAULT_GRID_MARGIN",
     "TILE_NODES",
     "MapSummary",
+    "RegionNumbers",
     "default_bounds",
     "grid_axes",
     "kappa_region_areas",
@@ -146,25 +147,39 @@ def _tile(actuation: str, mode: WorkingMode, lengths: FloatArray, x: FloatArray,
     return reachable, np.asarray(np.broadcast_to(values, shape), dtype=np.float64)
 
 
+@dataclass(frozen=True)
+class RegionNumbers:
+    """W_kappa0 of each design, (m,) each: ``area`` and ``rectangle_region_area`` (0
+    where it is empty), the largest 1/kappa found (``largest``, NaN if nothing was
+    searched) and where (``largest_x``, ``largest_y``)."""
+
+    area: FloatArray
+    rectangle_region_area: FloatArray
+    largest: FloatArray
+    largest_x: FloatArray
+    largest_y: FloatArray
+
+
 def kappa_region_areas(
     actuation: str,
     mode: WorkingMode,
     lengths: FloatArray,
     limit: FloatArray,
     search: tuple[int, int],
-) -> tuple[FloatArray, FloatArray]:
-    """W_kappa0's area and rectangle-region area (m,) each (0 where it is empty), for
-    the designs ``lengths`` (m, 3) at the limits ``limit`` (m,), by the job's column
-    search with ``search`` = (columns, rows), one design at a time; NaN for a design whose
-    search raises (its job would fail: a study kernel never raises for a design)."""
-    whole, lowest = np.zeros(len(lengths)), np.zeros(len(lengths))
+) -> RegionNumbers:
+    """W_kappa0's numbers (:class:`RegionNumbers`) for the designs ``lengths`` (m, 3) at
+    the limits ``limit`` (m,), by the job's column search with ``search`` = (columns,
+    rows), one design at a time; NaN for a design whose search raises (its job would
+    fail: a study kernel never raises for a design)."""
+    numbers = np.full((5, len(lengths)), np.nan)
     for k, (l1, l2, e) in enumerate(lengths.tolist()):
         robot = Robot(Architecture(actuation, l1, l2, e), mode)  # type: ignore[arg-type]
         try:
             region = robot_kappa_region(robot, float(limit[k]), search)
         except (ArithmeticError, ValueError):
-            whole[k] = lowest[k] = np.nan
             continue
-        if region.found:
-            whole[k], lowest[k] = region.whole_area, region.rectangle_region_area
-    return whole, lowest
+        found = region.found
+        numbers[:, k] = (region.whole_area if found else 0.0,
+                         region.rectangle_region_area if found else 0.0,
+                         region.largest_inverse_condition, *region.largest_point)  # fmt: skip
+    return RegionNumbers(*numbers)
