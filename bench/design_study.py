@@ -56,6 +56,12 @@ CASES: list[tuple[str, dict[str, Any], int, int, int]] = [
                   "grid": {"points_per_axis": 51}},
         "vary": {"l2": [1.0, 2.0, 10_000]},
         "objectives": {"summary.inverse_condition.mean": "max"}}, 10_000, 12, 1),
+    ("five-bar, W_kappa0 area", {
+        "process": "planar2dof-conditioning-map",
+        "fixed": {"architecture": "isotropic", "inverse_condition_limit": 0.5,
+                  "grid": {"points_per_axis": 51}},
+        "vary": {"l2": [1.0, 2.0, 10_000]},
+        "objectives": {"w_kappa0.area": "max"}}, 40, 8, 1),
     ("chain-parallelism, Fig 2", {**dict(STUDY_EXAMPLES[2].inputs),
                                   "vary": {"chains[3].lengths[2]": [6, 24, 200_000]}},
      200_000, 50, 1),
