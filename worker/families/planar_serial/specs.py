@@ -19,6 +19,7 @@ from pydantic import (
     Field,
     JsonValue,
     Tag,
+    ValidationInfo,
     field_validator,
     model_validator,
 )
@@ -38,6 +39,7 @@ from worker.families.planar_serial.joint_limits_input import (
     JointLimitsDeg,
     checked_joint_limits_deg,
 )
+from worker.study_kernels import in_study_template
 
 __all__ = [
     "MAX_ORIENTATION_STEP_DEG",
@@ -315,7 +317,12 @@ class _ArmSpec(FrozenSpec):
 
     @field_validator("links")
     @classmethod
-    def _spread(cls, links: tuple[float, float, float]) -> tuple[float, float, float]:
+    def _spread(
+        cls, links: tuple[float, float, float], info: ValidationInfo
+    ) -> tuple[float, float, float]:
+        """A design study's template skips it: its kernel checks each design's links."""
+        if in_study_template(info.context):
+            return links
         problem = length_ratio_problem(links, "links")
         if problem is not None:
             raise ValueError(problem)
@@ -342,11 +349,12 @@ class DexterityMapSpec(_TaskSpec, _ArmSpec):
     """Inputs of ``planar3r-dexterity-map``: d_z and D = d_z/3 over a grid."""
 
     @model_validator(mode="after")
-    def _grid_meets_the_reach(self) -> DexterityMapSpec:
+    def _grid_meets_the_reach(self, info: ValidationInfo) -> DexterityMapSpec:
         """A grid that holds no point of the reachable annulus (unlimited joints: radii
         max(0, 2 max(l) - sum(l)) to sum(l); joint limits only shrink it) would map
-        nothing."""
-        if self.grid.bounds is None:
+        nothing.  A design study's template skips it: its kernel checks each design
+        (:mod:`worker.families.planar_serial.study`)."""
+        if self.grid.bounds is None or in_study_template(info.context):
             return self
         x_min, x_max, y_min, y_max = self.grid.bounds
         outer = sum(self.links)

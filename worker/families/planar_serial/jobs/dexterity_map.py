@@ -23,6 +23,8 @@ from worker.families.planar_serial.errata import dexterity_map_errata_notes
 from worker.families.planar_serial.jobs.data_export import dexterity_map_files
 from worker.families.planar_serial.jobs.dexterity_evaluation import (
     FULL_DEXTERITY_TOL,
+    RADIAL_ANGLE_DEG,
+    RADIAL_SAMPLES,
     LimitedJoints,
     Links,
     WorkspaceGrid,
@@ -32,6 +34,7 @@ from worker.families.planar_serial.jobs.dexterity_evaluation import (
     orientations,
     point_dexterity,
     point_method,
+    radial_reach,
     workspace_grid,
 )
 from worker.families.planar_serial.jobs.map_notes import (
@@ -56,11 +59,6 @@ from worker.families.planar_serial.specs import DexterityMapSpec
 __all__ = ["RADIAL_SAMPLES", "run_dexterity_map"]
 
 FloatArray = NDArray[np.float64]
-
-#: Distances sampled along the radial section (the paper's Fig 7).
-RADIAL_SAMPLES = 2001
-#: Angle (deg) of the radial section's ray; d_z depends on it only under joint limits.
-RADIAL_ANGLE_DEG = 0.0
 
 
 def run_dexterity_map(spec: DexterityMapSpec, ctx: JobContext) -> JobOutcome:
@@ -88,7 +86,7 @@ def run_dexterity_map(spec: DexterityMapSpec, ctx: JobContext) -> JobOutcome:
         trajectory = trajectory_summary(point_dexterity(links, samples, sampling))
 
     progress.report(85.0, "radial section")
-    radial_d = np.linspace(0.0, _radial_reach(links), RADIAL_SAMPLES)
+    radial_d = np.linspace(0.0, radial_reach(links), RADIAL_SAMPLES)
     radial_dz = _radial_section(links, radial_d, sampling)
 
     progress.report(87.0, "regions along the ray")
@@ -109,11 +107,6 @@ def run_dexterity_map(spec: DexterityMapSpec, ctx: JobContext) -> JobOutcome:
     artifacts += dexterity_map_files(spec, grid, d_z, region)
     progress.report(100.0, "done")
     return JobOutcome(result=result, artifacts=artifacts, notes=tuple(notes), errata=tuple(errata))
-
-
-def _radial_reach(links: Links) -> float:
-    """How far the radial section runs: 1.05 (l1 + l2 + l3), like the default grid."""
-    return 1.05 * math.fsum(links)
 
 
 def _radial_section(
@@ -156,7 +149,7 @@ def _result(
             "radial_section": {
                 "angle_deg": RADIAL_ANGLE_DEG,
                 "samples": RADIAL_SAMPLES,
-                "d_to": _radial_reach(links),
+                "d_to": radial_reach(links),
                 "method": map_method(sampling),
             },
         },
