@@ -39,6 +39,7 @@ from worker.families.planar_serial.joint_limits_input import (
     JointLimitsDeg,
     checked_joint_limits_deg,
 )
+from worker.families.planar_serial.kinematics.inputs import Arm
 from worker.study_kernels import in_study_template
 
 __all__ = [
@@ -320,13 +321,14 @@ class _ArmSpec(FrozenSpec):
     def _spread(
         cls, links: tuple[float, float, float], info: ValidationInfo
     ) -> tuple[float, float, float]:
-        """A design study's template skips it: its kernel checks each design's links."""
-        if in_study_template(info.context):
-            return links
-        problem = length_ratio_problem(links, "links")
-        if problem is not None:
-            raise ValueError(problem)
-        return links
+        """The links, checked once here and kept as an :class:`Arm` that the family's
+        kinematics trust.  A design study's template skips the spread: its kernel checks
+        each design's links."""
+        if not in_study_template(info.context):
+            problem = length_ratio_problem(links, "links")
+            if problem is not None:
+                raise ValueError(problem)
+        return Arm(*links)
 
 
 class _DesignSpec(FrozenSpec):

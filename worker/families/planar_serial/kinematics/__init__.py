@@ -42,6 +42,7 @@ from worker.families.planar_serial.kinematics.reference_sampler import sampled_o
 
 __all__ = [
     "band_area",
+    "closed_form_dexterity",
     "exact_orientation_dexterity",
     "forward_kinematics",
     "full_dexterity_bands",
@@ -101,6 +102,13 @@ def exact_orientation_dexterity(links: ArrayLike, points: ArrayLike) -> FloatArr
     """
     lengths = checked_link_rows(links, "exact_orientation_dexterity")
     p = checked_points(points, "exact_orientation_dexterity")
+    return closed_form_dexterity(lengths, p)
+
+
+def closed_form_dexterity(lengths: FloatArray, p: FloatArray) -> FloatArray:
+    """:func:`exact_orientation_dexterity` of inputs already checked: designs
+    ``(..., 3)`` finite and positive, points ``(..., 2)`` finite (the study kernel's
+    tiles, whose designs its refusals checked)."""
     l1, l2, l3 = lengths[..., 0], lengths[..., 1], lengths[..., 2]
     # Scale-free form: lengths over the full reach, and clamping d at twice the reach
     # (d_z = 0 there anyway) keep every intermediate O(1).

@@ -15,11 +15,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from worker.families.planar_serial.kinematics import exact_orientation_dexterity
+from worker.families.planar_serial.kinematics import closed_form_dexterity
 from worker.families.planar_serial.kinematics.inputs import FloatArray
-from worker.families.planar_serial.kinematics.limited_exact import (
-    exact_limited_orientation_dexterity,
-)
+from worker.families.planar_serial.kinematics.limited_exact import events_dexterity
 
 __all__ = [
     "FULL_DEXTERITY_TOL",
@@ -44,7 +42,11 @@ def designs_point_dexterity(
     links' unit, joint limits (3, 2) rad or None (fully revolute joints: the closed
     form).  Returns (m, p) in [0, 1].  Under joint limits, exact events
     (:func:`~.limited_exact.exact_limited_orientation_dexterity`, one design per point),
-    tiled over designs so that at most about :data:`TILE_PAIRS` pairs are in flight."""
+    tiled over designs so that at most about :data:`TILE_PAIRS` pairs are in flight.
+
+    The inputs are trusted (prior validation assumed): links finite and positive (a
+    study's refusals, a job's validated inputs), points finite, limits as
+    :func:`~.inputs.checked_joint_limits` requires."""
     m, p = links.shape[0], points.shape[0]
     d_z = np.zeros((m, p), dtype=np.float64)
     if m == 0 or p == 0:
@@ -54,11 +56,9 @@ def designs_point_dexterity(
         stop = min(start + rows, m)
         block = links[start:stop, None, :]
         if joint_limits_rad is None:
-            d_z[start:stop] = exact_orientation_dexterity(block, points[None])
+            d_z[start:stop] = closed_form_dexterity(block, points[None])
         else:
-            d_z[start:stop] = exact_limited_orientation_dexterity(
-                block, points[None], joint_limits_rad
-            )
+            d_z[start:stop] = events_dexterity(block, points[None], joint_limits_rad)
     return d_z
 
 
