@@ -39,10 +39,10 @@ from worker.families.planar_serial.kinematics.joint_limits import (
     orientation_samples,
 )
 from worker.families.planar_serial.kinematics.reference_sampler import sampled_orientation_dexterity
+from worker.families.planar_serial.kinematics.study_kernel import closed_form_dexterity
 
 __all__ = [
     "band_area",
-    "closed_form_dexterity",
     "exact_orientation_dexterity",
     "forward_kinematics",
     "full_dexterity_bands",
@@ -103,26 +103,6 @@ def exact_orientation_dexterity(links: ArrayLike, points: ArrayLike) -> FloatArr
     lengths = checked_link_rows(links, "exact_orientation_dexterity")
     p = checked_points(points, "exact_orientation_dexterity")
     return closed_form_dexterity(lengths, p)
-
-
-def closed_form_dexterity(lengths: FloatArray, p: FloatArray) -> FloatArray:
-    """:func:`exact_orientation_dexterity` of inputs already checked: designs
-    ``(..., 3)`` finite and positive, points ``(..., 2)`` finite (the study kernel's
-    tiles, whose designs its refusals checked)."""
-    l1, l2, l3 = lengths[..., 0], lengths[..., 1], lengths[..., 2]
-    # Scale-free form: lengths over the full reach, and clamping d at twice the reach
-    # (d_z = 0 there anyway) keep every intermediate O(1).
-    scale = l1 + l2 + l3
-    a, b, c = l1 / scale, l2 / scale, l3 / scale
-    d = np.minimum(np.hypot(p[..., 0], p[..., 1]) / scale, 2.0)
-    at_origin = np.where((np.abs(l1 - l2) <= l3) & (l3 <= l1 + l2), 1.0, 0.0)
-    safe_d = np.where(d > 0.0, d, 1.0)
-    with np.errstate(divide="ignore", over="ignore"):
-        c_lo = (d * d + c * c - (a + b) ** 2) / (2.0 * safe_d * c)
-        c_hi = (d * d + c * c - (a - b) ** 2) / (2.0 * safe_d * c)
-    arcs = np.arccos(np.clip(c_lo, -1.0, 1.0)) - np.arccos(np.clip(c_hi, -1.0, 1.0))
-    dz = np.clip(arcs / np.pi, 0.0, 1.0)
-    return np.asarray(np.where(d > 0.0, dz, at_origin), dtype=np.float64)
 
 
 def full_dexterity_bands(links: ArrayLike) -> tuple[tuple[float, float], ...]:

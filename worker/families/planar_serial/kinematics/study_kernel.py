@@ -15,7 +15,6 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from worker.families.planar_serial.kinematics import closed_form_dexterity
 from worker.families.planar_serial.kinematics.inputs import FloatArray
 from worker.families.planar_serial.kinematics.limited_exact import events_dexterity
 
@@ -23,6 +22,7 @@ __all__ = [
     "FULL_DEXTERITY_TOL",
     "TILE_PAIRS",
     "TrajectoryStatistics",
+    "closed_form_dexterity",
     "designs_point_dexterity",
     "designs_regions",
     "trajectory_statistics",
@@ -33,6 +33,27 @@ __all__ = [
 TILE_PAIRS = 2**15
 #: d_z within this of 1 counts as full dexterity.
 FULL_DEXTERITY_TOL = 1e-12
+
+
+def closed_form_dexterity(lengths: FloatArray, p: FloatArray) -> FloatArray:
+    """The closed-form d_z of revolute joints (``exact_orientation_dexterity`` in
+    :mod:`worker.families.planar_serial.kinematics`, which checks its inputs and calls
+    this) of inputs already checked: designs ``(..., 3)`` finite and positive, points
+    ``(..., 2)`` finite; the shapes broadcast."""
+    l1, l2, l3 = lengths[..., 0], lengths[..., 1], lengths[..., 2]
+    # Scale-free form: lengths over the full reach, and clamping d at twice the reach
+    # (d_z = 0 there anyway) keep every intermediate O(1).
+    scale = l1 + l2 + l3
+    a, b, c = l1 / scale, l2 / scale, l3 / scale
+    d = np.minimum(np.hypot(p[..., 0], p[..., 1]) / scale, 2.0)
+    at_origin = np.where((np.abs(l1 - l2) <= l3) & (l3 <= l1 + l2), 1.0, 0.0)
+    safe_d = np.where(d > 0.0, d, 1.0)
+    with np.errstate(divide="ignore", over="ignore"):
+        c_lo = (d * d + c * c - (a + b) ** 2) / (2.0 * safe_d * c)
+        c_hi = (d * d + c * c - (a - b) ** 2) / (2.0 * safe_d * c)
+    arcs = np.arccos(np.clip(c_lo, -1.0, 1.0)) - np.arccos(np.clip(c_hi, -1.0, 1.0))
+    dz = np.clip(arcs / np.pi, 0.0, 1.0)
+    return np.asarray(np.where(d > 0.0, dz, at_origin), dtype=np.float64)
 
 
 def designs_point_dexterity(
