@@ -6,8 +6,11 @@ every design at the task points and along the trajectory at once
 D, region and position, the trajectory's eq (4) statistics, and the numbers that echo
 the inputs (``links``, the grid, the radial section).  Under joint limits d_z is exact
 by events, as the job computes it; with method ``orientation-sampling`` the kernel
-runs the job's own sampling design by design.  The map over the grid, the regions and
-the bands are not computed: a study of these paths runs per design.
+runs the job's own sampling design by design.  The grid's ``summary`` and ``areas``
+come from each design's own map, computed as the job computes it (one design at a
+time, vectorised over the grid's nodes), only when a study reads them.  The regions,
+the bands along the ray and the radial section are not computed: a study of these
+paths runs per design.
 
 Refusals, exactly as the process makes them: the first link outside [1e-6, 1e6] (in
 the order l1, l2, l3: pydantic's), then links whose longest is more than 1e6 times the
@@ -20,7 +23,7 @@ from __future__ import annotations
 
 from worker.study_kernels import KernelPlan, KernelRequest, StudyKernel
 
-__all__ = ["COVERS", "DEXTERITY_MAP_KERNEL", "SECONDS_PER_POINT_EVALUATION"]
+__all__ = ["COVERS", "DEXTERITY_MAP_KERNEL", "MAP_PATHS", "SECONDS_PER_POINT_EVALUATION"]
 
 _TASK_POINTS = ("x", "y", "distance", "d_z", "D", "region")
 _TRAJECTORY = ("samples", "d_z_mean", "D_mean", "d_z_min", "fully_dexterous_fraction")
@@ -33,8 +36,15 @@ _ECHOES = (
     "discretisation.radial_section.samples",
     "discretisation.radial_section.d_to",
 )
+_SUMMARY = ("d_z_max", "d_z_mean_reachable", "D_mean_reachable", "reachable_points",
+            "fully_dexterous_points")  # fmt: skip
+_AREAS = ("reachable", "fully_dexterous", "reachable_grid", "fully_dexterous_grid", "cell_area",
+          "unlimited_reference.reachable", "unlimited_reference.fully_dexterous")  # fmt: skip
+#: The paths read from the map over the grid (each design's own map, as the job's).
+MAP_PATHS = (*(f"summary.{name}" for name in _SUMMARY), *(f"areas.{name}" for name in _AREAS))
 COVERS = (
     *_ECHOES,
+    *MAP_PATHS,
     *(f"task_points[].{name}" for name in _TASK_POINTS),
     *(f"trajectory.{name}" for name in _TRAJECTORY),
 )

@@ -6,7 +6,7 @@ process refuses them and evaluated at once."""
 from __future__ import annotations
 
 import math
-from collections.abc import Callable, Mapping
+from collections.abc import Mapping
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
@@ -16,18 +16,12 @@ from numpy.typing import NDArray
 from worker.common.numeric_ranges import MAX_LENGTH, MAX_LENGTH_RATIO, MIN_LENGTH
 from worker.families.planar_serial.jobs.dexterity_evaluation import (
     DEFAULT_GRID_MARGIN,
-    RADIAL_ANGLE_DEG,
-    RADIAL_SAMPLES,
     LimitedJoints,
     limited_joints,
-    point_dexterity,
 )
 from worker.families.planar_serial.jobs.trajectories import trajectory_samples
-from worker.families.planar_serial.kinematics.study_kernel import (
-    designs_point_dexterity,
-    designs_regions,
-    trajectory_statistics,
-)
+from worker.families.planar_serial.study import MAP_PATHS
+from worker.families.planar_serial.study_block import BlockNumbers
 from worker.study_kernels import KernelBlock, KernelRequest, Refusal
 
 if TYPE_CHECKING:
@@ -76,6 +70,8 @@ class DexterityMapPlan:
             points += len(self.task_xy)
         if self.path_xy is not None and any(p.startswith("trajectory.") for p in self.wanted):
             points += len(self.path_xy)
+        if self.wanted & set(MAP_PATHS):
+            points += self.template.grid.points_per_axis**2
         return float(points * per_point + 1)
 
     def links(self, values: FloatArray) -> FloatArray:
@@ -119,91 +115,23 @@ class DexterityMapPlan:
     def evaluate(self, values: FloatArray) -> KernelBlock:
         links = self.links(values)
         refused, refusals = self.refusals(links)
-        accepted = np.flatnonzero(refused < 0)
-        found = self._values(links, accepted)
-        return KernelBlock({path: found[path]() for path in self.wanted}, refused, refusals)
-
-    def _d_z(self, links: FloatArray, points: FloatArray) -> FloatArray:
-        """d_z (m, p) of the accepted designs ``links`` at ``points``, as the job."""
-        if self.limited is None or not self.limited.sampled:
-            limits = None if self.limited is None else self.limited.joint_limits_rad
-            return designs_point_dexterity(links, points, limits)
-        rows = [point_dexterity((l1, l2, l3), points, self.limited)
-                for l1, l2, l3 in links.tolist()]  # fmt: skip
-        return np.asarray(rows, dtype=np.float64).reshape(len(links), len(points))
-
-    def _values(
-        self, links: FloatArray, accepted: NDArray[np.intp]
-    ) -> dict[str, Callable[[], FloatArray]]:
-        """Each covered path's numbers (m, *L), computed when asked for (NaN where a
-        design is refused or the process reports null)."""
-        m = len(links)
-        cache: dict[str, FloatArray] = {}
-
-        def spread(rows: FloatArray) -> FloatArray:
-            full = np.full((m, *rows.shape[1:]), np.nan)
-            full[accepted] = rows
-            return full
-
-        def constant(value: float | list[float]) -> Callable[[], FloatArray]:
-            row = np.asarray(value, dtype=np.float64)
-            return lambda: np.broadcast_to(row, (m, *row.shape)).copy()
-
-        def task_d_z() -> FloatArray:
-            if "task" not in cache:
-                cache["task"] = spread(self._d_z(links[accepted], self.task_xy))
-            return cache["task"]
-
-        def trajectory(name: str) -> Callable[[], FloatArray]:
-            def read() -> FloatArray:
-                if self.path_xy is None:
-                    return np.full(m, np.nan)
-                if "path" not in cache:
-                    cache["path"] = self._d_z(links[accepted], self.path_xy)
-                stats = trajectory_statistics(cache["path"])
-                return spread(np.asarray(getattr(stats, name), dtype=np.float64))
-
-            return read
-
-        task = self.task_xy
-        distance = np.hypot(task[:, 0], task[:, 1])
-        samples = np.nan if self.path_xy is None else float(len(self.path_xy))
-        grid = self.template.grid
-        return {
-            "links[]": lambda: links.copy(),
-            "discretisation.grid.bounds[]": lambda: self._bounds(links),
-            "discretisation.grid.points_per_axis": constant(grid.points_per_axis),
-            "discretisation.grid.step[]": lambda: self._steps(self._bounds(links)),
-            "discretisation.radial_section.angle_deg": constant(RADIAL_ANGLE_DEG),
-            "discretisation.radial_section.samples": constant(RADIAL_SAMPLES),
-            "discretisation.radial_section.d_to": lambda: self._half_widths(links),
-            "task_points[].x": constant(task[:, 0].tolist()),
-            "task_points[].y": constant(task[:, 1].tolist()),
-            "task_points[].distance": constant(distance.tolist()),
-            "task_points[].d_z": task_d_z,
-            "task_points[].D": lambda: task_d_z() / 3.0,
-            "task_points[].region": lambda: designs_regions(links, distance),
-            "trajectory.samples": constant(samples),
-            "trajectory.d_z_mean": trajectory("d_z_mean"),
-            "trajectory.D_mean": trajectory("D_mean"),
-            "trajectory.d_z_min": trajectory("d_z_min"),
-            "trajectory.fully_dexterous_fraction": trajectory("fully_dexterous_fraction"),
-        }
+        numbers = BlockNumbers(self, links, np.flatnonzero(refused < 0))
+        return KernelBlock({path: numbers.read(path) for path in self.wanted}, refused, refusals)
 
     @staticmethod
-    def _half_widths(links: FloatArray) -> FloatArray:
+    def half_widths(links: FloatArray) -> FloatArray:
         """1.05 (l1 + l2 + l3) per design, summed exactly (as the job's math.fsum)."""
         return np.array([DEFAULT_GRID_MARGIN * math.fsum(row) for row in links.tolist()])
 
-    def _bounds(self, links: FloatArray) -> FloatArray:
+    def bounds(self, links: FloatArray) -> FloatArray:
         """The grid's bounds (m, 4): the given ones, or the square ±1.05 (l1 + l2 + l3)."""
         if self.template.grid.bounds is not None:
             row = np.asarray(self.template.grid.bounds, dtype=np.float64)
             return np.broadcast_to(row, (len(links), 4)).copy()
-        half = self._half_widths(links)
+        half = self.half_widths(links)
         return np.stack([-half, half, -half, half], axis=1)
 
-    def _steps(self, bounds: FloatArray) -> FloatArray:
+    def steps(self, bounds: FloatArray) -> FloatArray:
         """The grid's spacing (m, 2), as :attr:`WorkspaceGrid.step`."""
         n = self.template.grid.points_per_axis - 1
         return np.stack([(bounds[:, 1] - bounds[:, 0]) / n, (bounds[:, 3] - bounds[:, 2]) / n],

@@ -2,7 +2,8 @@
 random links (lengths out of range, spreads beyond the ratio, arms that reach none of a
 given grid or none of the task), random joint limits (none, the full turn, a joint
 locked, limits at ±180°; exact events and orientation sampling), task points (the base
-included), trajectories, and random objectives among the covered paths.  No shortcut:
+included), trajectories, grids (default or given bounds), and random objectives among
+the covered paths (the map's summary and areas included).  No shortcut:
 every reason code and refused field agrees, and the numbers are equal to 1e-12
 relative (to the bit, in fact)."""
 
@@ -41,7 +42,11 @@ OBJECTIVES = [
     "trajectory.d_z_mean", "trajectory.D_mean", "trajectory.fully_dexterous_fraction",
     "trajectory.samples", "links|sum", "links[2]", "discretisation.grid.step[0]",
     "discretisation.grid.bounds|max", "discretisation.radial_section.d_to",
-    "discretisation.grid.points_per_axis",
+    "discretisation.grid.points_per_axis", "summary.d_z_max", "summary.d_z_mean_reachable",
+    "summary.D_mean_reachable", "summary.reachable_points", "summary.fully_dexterous_points",
+    "areas.reachable", "areas.fully_dexterous", "areas.reachable_grid",
+    "areas.fully_dexterous_grid", "areas.cell_area", "areas.unlimited_reference.reachable",
+    "areas.unlimited_reference.fully_dexterous",
 ]  # fmt: skip
 SETTINGS = settings(max_examples=60, deadline=None, derandomize=True,
                     suppress_health_check=[HealthCheck.too_slow])  # fmt: skip
@@ -75,7 +80,8 @@ def trajectories(draw: st.DrawFn) -> dict[str, Any] | None:
 def studies(draw: st.DrawFn) -> dict[str, Any]:
     links = draw(st.sampled_from([[15, 14, 8], [10, 10, 3], [1, 2, 1], [20, 5, 5]]))
     varied = draw(st.lists(st.integers(0, 2), min_size=1, max_size=2, unique=True))
-    fixed: dict[str, Any] = {"links": links, "grid": {"points_per_axis": 3}}
+    fixed: dict[str, Any] = {"links": links,
+                             "grid": {"points_per_axis": draw(st.sampled_from([2, 3, 7]))}}  # fmt: skip
     limits = draw(st.sampled_from(LIMITS))
     if limits is not None:
         fixed["joint_limits_deg"] = limits
