@@ -80,8 +80,8 @@ def trajectories(draw: st.DrawFn) -> dict[str, Any] | None:
 def studies(draw: st.DrawFn) -> dict[str, Any]:
     links = draw(st.sampled_from([[15, 14, 8], [10, 10, 3], [1, 2, 1], [20, 5, 5]]))
     varied = draw(st.lists(st.integers(0, 2), min_size=1, max_size=2, unique=True))
-    fixed: dict[str, Any] = {"links": links,
-                             "grid": {"points_per_axis": draw(st.sampled_from([2, 3, 7]))}}  # fmt: skip
+    side = draw(st.sampled_from([2, 3, 7]))
+    fixed: dict[str, Any] = {"links": links, "grid": {"points_per_axis": side}}
     limits = draw(st.sampled_from(LIMITS))
     if limits is not None:
         fixed["joint_limits_deg"] = limits

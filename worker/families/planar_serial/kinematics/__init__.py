@@ -25,6 +25,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from worker.common.parameter_errors import bad_parameter
+from worker.families.planar_serial.kinematics.inputs import Arm as Arm
 from worker.families.planar_serial.kinematics.inputs import BoolArray as BoolArray
 from worker.families.planar_serial.kinematics.inputs import FloatArray as FloatArray
 from worker.families.planar_serial.kinematics.inputs import Links as Links
@@ -169,12 +170,12 @@ def paper_regions(links: ArrayLike, distances: ArrayLike) -> NDArray[np.int8]:
     return regions.astype(np.int8)
 
 
-def synthesise_links(d_min: float, d_max: float, l3: float) -> Links:
+def synthesise_links(d_min: float, d_max: float, l3: float) -> Arm:
     """Link lengths by eqs (10)-(11): l1 = (d_max + l3)/2 + 1, l2 = (d_max + l3)/2.
 
     The "+1" (in the task's length unit) makes |l1 - l2| = 1, so full dexterity at d_min
     needs l3 + 1 <= d_min, not only the paper's l3 < d_min (docs/methods/planar-serial.md); callers
-    check that. Returns (l1, l2, l3).
+    check that. Returns (l1, l2, l3) as an :class:`~.inputs.Arm` (checked once).
     """
     if not (math.isfinite(l3) and l3 > 0):
         raise bad_parameter("l3", "synthesise_links", "a finite positive length", l3)
@@ -185,4 +186,4 @@ def synthesise_links(d_min: float, d_max: float, l3: float) -> Links:
             "d_max", "synthesise_links", f"a finite distance >= d_min = {d_min}", d_max
         )
     half = (d_max + l3) / 2.0
-    return half + 1.0, half, float(l3)
+    return Arm(half + 1.0, half, float(l3))  # positive: checked once, here

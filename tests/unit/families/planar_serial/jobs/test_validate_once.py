@@ -55,3 +55,21 @@ def test_the_kinematics_still_check_what_they_are_not_given_as_an_arm(
     assert len(calls) == 1
     with pytest.raises(ValueError, match="'links' parameter of full_dexterity_bands"):
         full_dexterity_bands((15, -14, 8))
+
+
+@pytest.mark.parametrize(
+    ("process_id", "change"),
+    [("planar3r-synthesis", {}),
+     ("planar3r-design", {"max_generations": 3, "population_size": 5, "starts": 2})],
+)  # fmt: skip
+def test_the_other_jobs_trust_their_links_too(
+    monkeypatch: pytest.MonkeyPatch, process_id: str, change: dict[str, Any]
+) -> None:
+    """The synthesised links are an Arm, and the design search's candidates lie in
+    their validated bounds: neither job checks links in its kinematics."""
+    process = default_registry().get(process_id)
+    assert process is not None
+    spec = validate_inputs(process, {**process.examples[0].inputs, "plots": False, **change})
+    calls = count_link_checks(monkeypatch)
+    process.run(spec, RecordingContext())
+    assert len(calls) <= 3
