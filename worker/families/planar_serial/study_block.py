@@ -13,6 +13,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 from numpy.typing import NDArray
 
+from worker.common.grids import WorkspaceGrid
 from worker.families.planar_serial.jobs.dexterity_evaluation import (
     RADIAL_ANGLE_DEG,
     RADIAL_SAMPLES,
@@ -23,7 +24,9 @@ from worker.families.planar_serial.jobs.dexterity_evaluation import (
 from worker.families.planar_serial.jobs.map_statistics import map_areas, map_summary
 from worker.families.planar_serial.kinematics.inputs import Arm
 from worker.families.planar_serial.kinematics.study_kernel import (
+    TILE_PAIRS,
     TrajectoryStatistics,
+    closed_form_dexterity,
     designs_point_dexterity,
     designs_regions,
     trajectory_statistics,
@@ -127,22 +130,38 @@ class BlockNumbers:
     @cached_property
     def _map_numbers(self) -> dict[str, FloatArray]:
         """Each accepted design's map over its grid and the numbers the job reports
-        about it (:mod:`~.jobs.map_statistics`), one design at a time as the job
-        computes them: per path of MAP_PATHS an array (accepted,), NaN where the job
-        reports null."""
+        about it (:mod:`~.jobs.map_statistics`): per path of MAP_PATHS an array
+        (accepted,), NaN where the job reports null.  With revolute joints the maps of
+        a tile of designs are one closed-form evaluation (elementwise, so each node's
+        d_z is the job's to the bit); under joint limits each design's map is computed
+        as the job computes it."""
         links = self.links[self.accepted]
         numbers = {path: np.full(len(links), np.nan) for path in MAP_PATHS}
-        for n, row in enumerate(links.tolist()):
-            arm = Arm(*row)  # accepted: the refusals checked these links
-            grid = workspace_grid(self.plan.template.grid, arm)
-            d_z = grid_dexterity(arm, grid, self.plan.limited, _ignore_progress)
-            found: dict[str, Any] = {
-                "summary": map_summary(d_z),
-                "areas": map_areas(arm, grid, self.plan.limited, d_z),
-            }
-            for path in MAP_PATHS:
-                node: Any = found
-                for part in path.split("."):
-                    node = None if node is None else node.get(part)
-                numbers[path][n] = np.nan if node is None else float(node)
+        arms = [Arm(*row) for row in links.tolist()]  # accepted: the refusals checked them
+        grids = [workspace_grid(self.plan.template.grid, arm) for arm in arms]
+        nodes = self.plan.template.grid.points_per_axis**2
+        rows = max(1, TILE_PAIRS // nodes) if self.plan.limited is None else 1
+        for start in range(0, len(arms), rows):
+            stop = min(start + rows, len(arms))
+            for n, d_z in enumerate(self._maps(links[start:stop], grids[start:stop]), start):
+                found = {"summary": map_summary(d_z),
+                         "areas": map_areas(arms[n], grids[n], self.plan.limited, d_z)}  # fmt: skip
+                for path in MAP_PATHS:
+                    numbers[path][n] = _number_at(found, path)
         return numbers
+
+    def _maps(self, links: FloatArray, grids: list[WorkspaceGrid]) -> FloatArray:
+        """The maps (r, ny, nx) of designs ``links`` (r, 3) over their grids."""
+        if self.plan.limited is None:
+            points = np.stack([grid.points() for grid in grids])
+            return closed_form_dexterity(links[:, None, None, :], points)
+        arm, grid = Arm(*links[0].tolist()), grids[0]
+        return grid_dexterity(arm, grid, self.plan.limited, _ignore_progress)[None]
+
+
+def _number_at(document: dict[str, Any], path: str) -> float:
+    """The number at a dotted path of ``document``; NaN where it is null."""
+    node: Any = document
+    for part in path.split("."):
+        node = None if node is None else node.get(part)
+    return np.nan if node is None else float(node)

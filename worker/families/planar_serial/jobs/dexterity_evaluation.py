@@ -27,6 +27,7 @@ from worker.families.planar_serial.kinematics.limited_exact import (
 )
 from worker.families.planar_serial.kinematics.study_kernel import (
     FULL_DEXTERITY_TOL,
+    closed_form_dexterity,
     designs_point_dexterity,
 )
 from worker.families.planar_serial.specs import GridSpec, JointLimitsDeg
@@ -154,14 +155,19 @@ def grid_dexterity(
     limited: LimitedJoints | None,
     on_progress: Callable[[int, int], None],
 ) -> FloatArray:
-    """d_z at every node, (ny, nx); ``on_progress(done, total)`` after each chunk."""
+    """d_z at every node, (ny, nx); ``on_progress(done, total)`` after each chunk.
+
+    The links are the job's, validated (an :class:`~..kinematics.inputs.Arm`).  With
+    revolute joints the closed form takes them as a row of designs (1, 1, 3), as the
+    study kernel's tiles of maps do, so that both compute each node alike."""
     points = grid.points()
     if limited is None:
         ny = points.shape[0]
         d_z = np.empty(points.shape[:2])
+        row = np.asarray(links, dtype=np.float64).reshape(1, 1, 3)
         edges = np.linspace(0, ny, min(EXACT_ROW_BLOCKS, ny) + 1).astype(int)
         for start, stop in itertools.pairwise(edges.tolist()):
-            d_z[start:stop] = planar_serial.exact_orientation_dexterity(links, points[start:stop])
+            d_z[start:stop] = closed_form_dexterity(row, points[start:stop])
             on_progress(stop, ny)
         return d_z
     if not limited.sampled:
