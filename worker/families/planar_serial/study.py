@@ -49,9 +49,11 @@ COVERS = (
     *(f"trajectory.{name}" for name in _TRAJECTORY),
 )
 #: Seconds per unit of the plan's cost (a point x an orientation tested there: a
-#: sub-arc between events under joint limits) for one design, batched: about 0.1 µs on
-#: the 2-core test machine (bench/design_study.py measures it).
-SECONDS_PER_POINT_EVALUATION = 1e-7
+#: sub-arc between events under joint limits) for one design, batched: about 0.12 µs
+#: for task points under joint limits, 0.12 µs a node for revolute maps and 0.16 µs a
+#: node and sub-arc for limited maps on the 2-core test machine at load 5
+#: (bench/design_study.py measures it).
+SECONDS_PER_POINT_EVALUATION = 1.5e-7
 
 
 def _prepare(request: KernelRequest) -> KernelPlan:
