@@ -7,8 +7,10 @@ D, region and position, the trajectory's eq (4) statistics, and the numbers that
 the inputs (``links``, the grid, the radial section).  Under joint limits d_z is exact
 by events, as the job computes it; with method ``orientation-sampling`` the kernel
 runs the job's own sampling design by design.  The grid's ``summary`` and ``areas``
-come from each design's own map, computed as the job computes it (one design at a
-time, vectorised over the grid's nodes), only when a study reads them.  The regions,
+come from each design's own map over its own grid, only when a study reads them:
+with revolute joints a tile of designs' maps at once (the closed form, node by node
+as the job's map), under joint limits each map as the job computes it; both summed
+up by the job's own functions (:mod:`~.jobs.map_statistics`).  The regions,
 the bands along the ray and the radial section are not computed: a study of these
 paths runs per design.
 

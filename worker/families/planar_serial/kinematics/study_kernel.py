@@ -4,8 +4,10 @@
 Every function takes designs as rows, ``links`` (m, 3) (l1, l2, l3 in one length
 unit), and returns one row per design.  The single-design jobs call the same functions
 with one row (:func:`~worker.families.planar_serial.jobs.dexterity_evaluation.point_dexterity`,
+``grid_dexterity`` there with revolute joints,
 :func:`~worker.families.planar_serial.jobs.trajectories.trajectory_summary`), so a study
-and a job agree to the bit.  Work is tiled over designs so that temporaries stay
+and a job agree to the bit.  The inputs are trusted: a study's refusals and a job's
+validated inputs checked them.  Work is tiled over designs so that temporaries stay
 bounded whatever the block: about :data:`TILE_PAIRS` (design, point) pairs at once.
 """
 
