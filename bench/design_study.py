@@ -6,9 +6,9 @@ then a 10^6-design SPM study end to end on two worker processes.
 1. Designs per second in this process, through the process's study kernel (``engine:
    batched``) and per design (``engine: per-design``, the whole process once per
    design), for the SPM (Bai's Example I, the first worked study: 144 samples), the
-   3R arm (task-point d_z) and the five-bar, and the two chain kernels; the ratio, and
-   the targets (the SPM batched >= 200x, the 3R kernel >= 10^5 design-task-points per
-   second).  A process without a kernel yet prints so.
+   3R arm (task-point d_z; its map summary) and the five-bar, and the two chain
+   kernels; the ratio, and the targets (the SPM batched >= 200x, the 3R kernel >= 10^5
+   design-task-points per second).  A process without a kernel yet prints so.
 2. A 10^6-design SPM study (Example I's fixed inputs, a 1000 x 1000 grid of (alpha1,
    alpha2)) on a real `dexlab serve` with two worker processes: wall time from
    submission to the assembled result (target <= 3 minutes).
@@ -50,12 +50,23 @@ CASES: list[tuple[str, dict[str, Any], int, int, int]] = [
     ("3R arm, worst task-point d_z", {**ARM, "vary": {"links[0]": [10, 20, 100],
                                                       "links[1]": [8, 18, 100]}},
      10_000, 12, len(ARM["fixed"]["task_points"])),
+    ("3R arm, map summary (51 x 51, limits)", {
+        **ARM, "fixed": {**ARM["fixed"], "grid": {"points_per_axis": 51}},
+        "vary": {"links[0]": [10, 20, 100], "links[1]": [8, 18, 100]},
+        "objectives": {"summary.d_z_mean_reachable": "max", "areas.fully_dexterous": "max"}},
+     200, 6, 1),
     ("five-bar, conditioning map", {
         "process": "planar2dof-conditioning-map",
         "fixed": {"architecture": "isotropic", "inverse_condition_limit": 0.5,
                   "grid": {"points_per_axis": 51}},
         "vary": {"l2": [1.0, 2.0, 10_000]},
         "objectives": {"summary.inverse_condition.mean": "max"}}, 10_000, 12, 1),
+    ("five-bar, W_kappa0 area", {
+        "process": "planar2dof-conditioning-map",
+        "fixed": {"architecture": "isotropic", "inverse_condition_limit": 0.5,
+                  "grid": {"points_per_axis": 51}},
+        "vary": {"l2": [1.0, 2.0, 10_000]},
+        "objectives": {"w_kappa0.area": "max"}}, 40, 8, 1),
     ("chain-parallelism, Fig 2", {**dict(STUDY_EXAMPLES[2].inputs),
                                   "vary": {"chains[3].lengths[2]": [6, 24, 200_000]}},
      200_000, 50, 1),

@@ -16,14 +16,14 @@ from fastapi.staticfiles import StaticFiles
 from service.api_docs import install_api_docs
 from service.auth.gate import AuthGate
 from service.auth.startup import start_auth
-from service.config import ServiceSettings
+from service.config import ServiceSettings, Settings
 from service.errors import install_error_handlers, problem_response
 from service.job_watcher import JobWatcher
-from service.metrics import MetricsSettings, install_metrics
+from service.metrics import install_metrics
 from service.ogc.forwarded import ForwardedHeaders
 from service.ogc.router import ogc_router
 from service.openapi import install_openapi
-from service.pages import STATIC_DIR, STATIC_PREFIX, Pages, PageSettings
+from service.pages import STATIC_DIR, STATIC_PREFIX, Pages
 from service.problems import PROBLEM_TYPES
 from service.request_guard import RequestGuard
 from service.request_id import RequestId
@@ -86,12 +86,10 @@ def _start_sweeper(
     return sweeper
 
 
-def create_app(
-    settings: ServiceSettings | None = None, *, registry: ProcessRegistry | None = None
-) -> FastAPI:
-    """Build the app serving ``registry`` (by default every process dexlab ships).  The
+def create_app(settings: Settings, *, registry: ProcessRegistry | None = None) -> FastAPI:
+    """Build the app from the settings tree its entry point built (it reads no
+    environment), serving ``registry`` (by default every process dexlab ships).  The
     store opens and the pool starts when the app starts."""
-    settings = settings or ServiceSettings()
     registry = default_registry() if registry is None else registry
 
     @asynccontextmanager
@@ -183,7 +181,7 @@ def create_app(
     # Outermost: a trusted proxy's X-Forwarded-* headers, before anything reads the URL.
     app.add_middleware(ForwardedHeaders, trusted=settings.forwarded_allow_ips)
     # Around it all: /metrics and each request's latency, then the request's ID (logs).
-    metrics = install_metrics(app) if MetricsSettings().metrics else None
+    metrics = install_metrics(app) if settings.metrics else None
     app.add_middleware(RequestId)
     app.include_router(execution_router(registry))
     app.include_router(processes.router)
@@ -193,9 +191,7 @@ def create_app(
     app.include_router(ogc_router())  # OGC API - Processes at /ogc/, same store and jobs
     # Pages for people: HTML on the GET routes above, method pages, form actions.
     app.state.pages = Pages(
-        PageSettings(),
-        family_tags=family_tags(registry),
-        family_of=partial(family_of, registry),
+        settings, family_tags=family_tags(registry), family_of=partial(family_of, registry)
     )
     app.include_router(job_events.router)
     app.include_router(methods.router)

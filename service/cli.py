@@ -2,9 +2,10 @@
 
 The command line itself is :mod:`dexlab.cli`; these functions are what its server
 commands call, with the options the user gave (unset options come from the
-environment, ``DEXLAB_*``).  Each configures its process's logging first
-(:mod:`worker.logs`, ``DEXLAB_LOG_FORMAT``); uvicorn's access and error logs and the
-Celery worker's lines use the same format.
+environment, ``DEXLAB_*``).  Each builds the settings tree (:class:`service.config.Settings`)
+once, here, and passes it down; nothing after reads the environment.  Each configures
+its process's logging first (:mod:`worker.logs`, ``DEXLAB_LOG_FORMAT``); uvicorn's access
+and error logs and the Celery worker's lines use the same format.
 """
 
 from __future__ import annotations
@@ -23,11 +24,11 @@ def serve(options: dict[str, Any]) -> None:
 
     # cli: a command loads the app, the pool or Celery only when it runs
     from service.app import create_app
-    from service.config import ServiceSettings
+    from service.config import Settings
     from worker.logs import configure_logging
 
-    settings = ServiceSettings(**options)
-    log_config = configure_logging(level=settings.log_level)
+    settings = Settings(**options)
+    log_config = configure_logging(settings.log_format, level=settings.log_level)
     # A client still holding a ``Prefer: wait`` open when the server stops is cut off
     # after this grace (its job is committed; it polls it later).
     # X-Forwarded-* are applied by the app (service.ogc.forwarded), from the proxies in
@@ -46,13 +47,13 @@ def serve(options: dict[str, Any]) -> None:
 def run_worker(options: dict[str, Any], log_level: str = "info") -> int:
     """``dexlab worker``: worker processes against a store; the exit status."""
     # cli: a command loads the app, the pool or Celery only when it runs
-    from worker.logs import LogSettings, configure_logging
+    from service.config import Settings
+    from worker.logs import configure_logging
     from worker.pool import WorkerPool
-    from worker.settings import WorkerSettings
     from worker.store import open_store
 
-    settings = WorkerSettings(**options)
-    log_format = LogSettings().log_format
+    settings = Settings(**options)
+    log_format = settings.log_format
     configure_logging(log_format, level=log_level)
     if settings.workers < 1:
         sys.stderr.write("dexlab worker: --workers must be at least 1\n")

@@ -1,22 +1,45 @@
-"""Service settings: the worker settings plus where the HTTP server listens."""
+"""The settings tree: one :class:`Settings`, built once by an entry point, passed down.
+
+Every setting is an environment variable ``DEXLAB_<FIELD>`` (or a command-line option
+of ``dexlab serve`` / ``dexlab worker``).  The tree is flat, for the variables are, and
+made of sections, each a plain model that reads nothing and is what its consumer takes:
+
+==============================================  ==========================================
+section                                         read by
+==============================================  ==========================================
+:class:`worker.settings.WorkerSettings`         the job runtime: store, pool, Celery
+:class:`ServiceSettings` (adds to the worker's)  the HTTP layer: listening, limits, keys
+:class:`service.pages.settings.PageSettings`    the browser pages
+:class:`service.metrics.settings.MetricsSettings`  ``/metrics``
+:class:`worker.logs.LogSettings`                every process's log lines
+==============================================  ==========================================
+
+:class:`Settings` is all of them and the only class that reads the environment; only
+the entry points build it (``dexlab serve``, ``dexlab worker``, ``dexlab keys``, the
+test deployments), and ``tests/test_environment_reads.py`` keeps it so.
+"""
 
 from __future__ import annotations
 
 from urllib.parse import urlsplit
 
-from pydantic import Field, SecretStr, field_validator
-from pydantic_settings import SettingsConfigDict
+from pydantic import ConfigDict, Field, SecretStr, field_validator
+from pydantic_settings import BaseSettings, SettingsConfigDict
 
+from service.metrics.settings import MetricsSettings
+from service.pages.settings import PageSettings
+from worker.logs import LogSettings
 from worker.settings import WorkerSettings
 
-__all__ = ["ServiceSettings"]
+__all__ = ["ServiceSettings", "Settings"]
 
 
 class ServiceSettings(WorkerSettings):
-    """Settings of ``dexlab serve`` (environment ``DEXLAB_*`` or command-line options)."""
+    """The HTTP section (with the worker section it adds to): where ``dexlab serve``
+    listens, what requests it accepts, its keys and sessions."""
 
     # A refused value is not echoed in the error: it may hold key secrets.
-    model_config = SettingsConfigDict(hide_input_in_errors=True)
+    model_config = ConfigDict(hide_input_in_errors=True)
 
     host: str = Field("127.0.0.1", description="Address the HTTP server binds to.")
     port: int = Field(8000, ge=0, le=65535, description="Port the HTTP server listens on.")
@@ -128,3 +151,16 @@ class ServiceSettings(WorkerSettings):
 
         OutboundPolicy.from_setting(value)  # ValueError names a bad entry
         return value
+
+
+class Settings(BaseSettings, ServiceSettings, PageSettings, MetricsSettings, LogSettings):
+    """Every setting of a dexlab process: the one settings tree (see the module).
+
+    ``Settings()`` reads ``DEXLAB_<FIELD>`` for each field of each section; keyword
+    arguments (the command-line options given) win over the environment.  An entry
+    point builds it once and passes it down; nothing else reads the environment.
+    """
+
+    model_config = SettingsConfigDict(
+        env_prefix="DEXLAB_", extra="forbid", frozen=True, hide_input_in_errors=True
+    )

@@ -1,19 +1,20 @@
 """Log lines: one format for the API, the local pool and the Celery workers.
 
-``DEXLAB_LOG_FORMAT=json`` writes each record as one JSON object on one line (the
-default in the container image); ``text`` (the default elsewhere) writes the same
-fields readably.  Every line has ``time`` (UTC, ISO 8601, milliseconds), ``level``,
-``logger``, ``message`` and ``process`` (the pid); ``request_id`` where a request is
-being served, ``job_id`` where a job is being run, ``exception`` with the traceback
-where there is one; uvicorn's access lines add ``client``, ``method``, ``path``,
-``http_version`` and ``status``.
+``DEXLAB_LOG_FORMAT=json`` (:class:`LogSettings`) writes each record as one JSON object
+on one line (the default in the container image); ``text`` (the default elsewhere)
+writes the same fields readably.  Every line has ``time`` (UTC, ISO 8601,
+milliseconds), ``level``, ``logger``, ``message`` and ``process`` (the pid);
+``request_id`` where a request is being served, ``job_id`` where a job is being run,
+``exception`` with the traceback where there is one; uvicorn's access lines add
+``client``, ``method``, ``path``, ``http_version`` and ``status``.
 
 The IDs travel in a context variable (:func:`log_context`): the request-ID middleware
 binds ``request_id`` around a request, the runner binds ``job_id`` around an attempt,
 and a filter on the one handler copies them into each record.  Celery's own task lines
 name their task, whose ID is the job ID.  :func:`configure_logging` is called by each
-entry point (``dexlab serve``, ``dexlab worker``, a spawned pool process); nothing
-here runs at import.
+entry point (``dexlab serve``, ``dexlab worker``, with the settings' format; a spawned
+pool process, with its supervisor's: :func:`current_log_format`); nothing here reads
+the environment or runs at import.
 """
 
 from __future__ import annotations
@@ -31,8 +32,7 @@ from datetime import UTC, datetime
 from types import MappingProxyType, TracebackType
 from typing import Any, Literal
 
-from pydantic import Field
-from pydantic_settings import BaseSettings, SettingsConfigDict
+from pydantic import BaseModel, ConfigDict, Field
 
 __all__ = [
     "JsonLineFormatter",
@@ -40,6 +40,7 @@ __all__ = [
     "LogSettings",
     "TextLineFormatter",
     "configure_logging",
+    "current_log_format",
     "log_context",
     "logging_config",
     "stdout_as_log_lines",
@@ -58,10 +59,10 @@ _CONTEXT: ContextVar[Mapping[str, str]] = ContextVar("dexlab_log_context", defau
 _ACCESS_FIELDS = ("client", "method", "path", "http_version", "status")
 
 
-class LogSettings(BaseSettings):
-    """How the processes log (environment ``DEXLAB_*``)."""
+class LogSettings(BaseModel):
+    """The logs section of the settings: how the processes log (``DEXLAB_LOG_FORMAT``)."""
 
-    model_config = SettingsConfigDict(env_prefix="DEXLAB_", extra="ignore", frozen=True)
+    model_config = ConfigDict(extra="ignore", frozen=True)
 
     log_format: LogFormat = Field(
         "text",
@@ -212,18 +213,26 @@ def _log_uncaught_in_thread(args: threading.ExceptHookArgs) -> None:
     )
 
 
-def configure_logging(
-    log_format: LogFormat | None = None, level: str | int = "INFO"
-) -> dict[str, Any]:
-    """Configure this process's logging (an entry point calls it once); ``log_format``
-    None reads ``DEXLAB_LOG_FORMAT``.  Warnings and uncaught exceptions are logged in
-    the same format.  Returns the configuration (for uvicorn's ``log_config``)."""
-    config = logging_config(log_format or LogSettings().log_format, level)
+def configure_logging(log_format: LogFormat, level: str | int = "INFO") -> dict[str, Any]:
+    """Configure this process's logging (an entry point calls it once, with the
+    settings' ``log_format``).  Warnings and uncaught exceptions are logged in the same
+    format.  Returns the configuration (for uvicorn's ``log_config``)."""
+    config = logging_config(log_format, level)
     logging.config.dictConfig(config)
     logging.captureWarnings(True)
     sys.excepthook = _log_uncaught
     threading.excepthook = _log_uncaught_in_thread
     return config
+
+
+def current_log_format() -> LogFormat:
+    """The format this process's root logger writes in (``text`` when it has no
+    :func:`configure_logging` handler): what a spawned pool process is told to use,
+    so that it logs as its supervisor does."""
+    for handler in logging.getLogger().handlers:
+        if isinstance(handler.formatter, JsonLineFormatter):
+            return "json"
+    return "text"
 
 
 def stdout_as_log_lines(logger_name: str = "dexlab.stdout") -> None:

@@ -31,6 +31,7 @@ from multiprocessing.process import BaseProcess
 from worker.dispatch.wake_ups import PoolWakeUps, WakeUpSender, wake_up_dir
 from worker.errors import StoreUnavailable
 from worker.liveness import FrozenWatch, LivenessBoard, frozen_after_s
+from worker.logs import current_log_format
 from worker.pool_process import EXIT_STARTUP, worker_main
 from worker.retention import RetentionSweeper
 from worker.runner import worker_id_for
@@ -141,10 +142,11 @@ class WorkerPool:
         proc = self._ctx.Process(
             target=worker_main,
             args=(
-                self.settings.model_dump(mode="json"),
+                # The worker section only (the tree's other sections hold secrets).
+                self.settings.model_dump(mode="json", include=set(WorkerSettings.model_fields)),
                 os.getpid(),
                 (self._board, index),
-                logging.getLogger().getEffectiveLevel(),
+                (current_log_format(), logging.getLogger().getEffectiveLevel()),
                 index == 0,  # the slot that prefers cheap jobs
                 None if self._wake_ups is None else self._wake_ups.sock,
             ),

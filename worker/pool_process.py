@@ -21,7 +21,7 @@ from typing import Any
 
 from worker.dispatch.wake_ups import WakeUpListener, WakeUpSender, wake_up_dir
 from worker.liveness import LivenessBoard
-from worker.logs import configure_logging
+from worker.logs import LogFormat, configure_logging
 from worker.registry import worker_registry
 from worker.runner import WorkerLoop
 from worker.settings import WorkerSettings
@@ -56,15 +56,17 @@ def worker_main(
     settings_data: dict[str, Any],
     parent_pid: int | None = None,
     liveness: tuple[LivenessBoard, int] | None = None,
-    log_level: int = logging.INFO,
+    log_as: tuple[LogFormat, int] = ("text", logging.INFO),
     prefer_cheap: bool = False,
     wake_up_socket: socket.socket | None = None,
 ) -> None:
     """Entry point of a pool process (spawned): beat in its ``(board, slot)``, lower
     its priority, build resources, then loop (taking cheap jobs first with
-    ``prefer_cheap``; idle, sleeping on the pool's ``wake_up_socket``).  It logs at its
-    supervisor's ``log_level``, in ``DEXLAB_LOG_FORMAT`` (inherited)."""
-    configure_logging(level=log_level)
+    ``prefer_cheap``; idle, sleeping on the pool's ``wake_up_socket``).  It logs as its
+    supervisor does: ``log_as`` is the supervisor's ``(format, level)``.  It reads no
+    environment: ``settings_data`` is the supervisor's worker settings."""
+    log_format, log_level = log_as
+    configure_logging(log_format, level=log_level)
     if liveness is not None:
         board, slot = liveness
         board.start_beating(slot)

@@ -1,12 +1,16 @@
-"""Worker-side settings, read from the environment (``DEXLAB_*``) or given explicitly."""
+"""The worker section of the settings: how workers reach the job store and run jobs.
+
+A section reads nothing: the one settings tree (:class:`service.config.Settings`) is
+built from the environment (``DEXLAB_<FIELD>``) by an entry point, once, and passed
+down; the job runtime receives it as a :class:`WorkerSettings`.
+"""
 
 from __future__ import annotations
 
 import os
 from pathlib import Path
 
-from pydantic import Field
-from pydantic_settings import BaseSettings, SettingsConfigDict
+from pydantic import BaseModel, ConfigDict, Field
 
 __all__ = ["WorkerSettings"]
 
@@ -15,13 +19,14 @@ def _cpu_count() -> int:
     return max(1, os.cpu_count() or 1)
 
 
-class WorkerSettings(BaseSettings):
+class WorkerSettings(BaseModel):
     """How workers reach the job store and how they run jobs.
 
-    Every field can be set with an environment variable named ``DEXLAB_<FIELD>``.
+    Each field is the environment variable ``DEXLAB_<FIELD>`` of the settings tree.
+    Unknown fields are ignored, so the whole tree's fields validate as this section.
     """
 
-    model_config = SettingsConfigDict(env_prefix="DEXLAB_", extra="ignore", frozen=True)
+    model_config = ConfigDict(extra="ignore", frozen=True)
 
     data_dir: Path = Field(Path("data"), description="Where the embedded SQLite store lives.")
     store_url: str | None = Field(

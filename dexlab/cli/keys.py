@@ -44,13 +44,13 @@ def _open(data_dir: Path | None, store_url: str | None, create: bool = False) ->
     from pydantic import ValidationError
 
     # cli: the client's command line loads the store only for `dexlab keys`
+    from service.config import Settings
     from worker.errors import DexlabError
-    from worker.settings import WorkerSettings
     from worker.store import open_store
 
     options: dict[str, Any] = {"data_dir": data_dir, "store_url": store_url}
     try:
-        settings = WorkerSettings(**{k: v for k, v in options.items() if v is not None})
+        settings = Settings(**{k: v for k, v in options.items() if v is not None})
         url = settings.resolved_store_url()
         path = Path(url.removeprefix("sqlite:///")) if url.startswith("sqlite:///") else None
         if path is not None and not path.exists():

@@ -1,17 +1,17 @@
-"""Whether the service exports metrics (environment ``DEXLAB_METRICS``)."""
+"""The metrics section of the settings: whether the service exports metrics
+(``DEXLAB_METRICS``)."""
 
 from __future__ import annotations
 
-from pydantic import Field
-from pydantic_settings import BaseSettings, SettingsConfigDict
+from pydantic import BaseModel, ConfigDict, Field
 
 __all__ = ["MetricsSettings"]
 
 
-class MetricsSettings(BaseSettings):
+class MetricsSettings(BaseModel):
     """``DEXLAB_METRICS=0`` turns ``/metrics`` off (it answers 404)."""
 
-    model_config = SettingsConfigDict(env_prefix="DEXLAB_", extra="ignore", frozen=True)
+    model_config = ConfigDict(extra="ignore", frozen=True)
 
     metrics: bool = Field(
         True, description="Serve Prometheus metrics at /metrics (0: off, the route is gone)."

@@ -1,21 +1,21 @@
-"""Settings of the browser pages (environment ``DEXLAB_*``)."""
+"""The pages section of the settings: the browser pages (``DEXLAB_DOCS_DIR``,
+``DEXLAB_EVENT_*``)."""
 
 from __future__ import annotations
 
 from pathlib import Path
 
-from pydantic import Field
-from pydantic_settings import BaseSettings, SettingsConfigDict
+from pydantic import BaseModel, ConfigDict, Field
 
 from service.pages.method_docs import default_docs_dir
 
 __all__ = ["PageSettings"]
 
 
-class PageSettings(BaseSettings):
+class PageSettings(BaseModel):
     """Where the method pages are, and how long a live-progress stream stays open."""
 
-    model_config = SettingsConfigDict(env_prefix="DEXLAB_", extra="ignore", frozen=True)
+    model_config = ConfigDict(extra="ignore", frozen=True)
 
     docs_dir: Path = Field(
         default_factory=default_docs_dir,

@@ -16,7 +16,7 @@ import httpx
 import pytest
 
 from service.app import create_app
-from service.config import ServiceSettings
+from service.config import Settings
 from tests.integration.servers import BACKENDS, Deployment, backend_env, deployment
 
 pytestmark = pytest.mark.integration
@@ -38,7 +38,7 @@ async def asgi_client(backend: str, tmp_path: Path) -> AsyncIterator[httpx.Async
     or as the API of a Celery deployment with one `dexlab worker` process."""
     with ExitStack() as stack:
         env = backend_env(backend, stack)
-        settings = ServiceSettings(
+        settings = Settings(
             data_dir=tmp_path,
             workers=1,
             heartbeat_seconds=0.5,

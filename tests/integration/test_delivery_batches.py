@@ -46,6 +46,10 @@ def test_a_delivery_runs_the_next_jobs_each_once_with_a_message_each(
             ).json()["jobID"]
             for n in range(JOBS)
         ]
+        # A publish is not confirmed: the broker may count the last ones a moment later.
+        deadline = time.monotonic() + 10
+        while _waiting(broker, queue) < JOBS and time.monotonic() < deadline:
+            time.sleep(0.1)
         assert _waiting(broker, queue) == JOBS
         dep.start_worker(1)
         for job_id in ids:

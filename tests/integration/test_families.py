@@ -15,6 +15,19 @@ from worker.registry import default_registry
 
 pytestmark = pytest.mark.integration
 
+#: Examples above this cost (planar3r-design's three largest, 15-25 s of CPU each) are
+#: accepted by the real service and then dismissed here; they run to success, figures
+#: checked, in process in tests/unit/families/test_figures.py.
+RUN_COST_MAX = 50_000_000
+
+
+def _runs_here(process_id: str, index: int) -> bool:
+    definition = default_registry().get(process_id)
+    assert definition is not None
+    example = definition.examples[index]
+    return definition.cost(definition.inputs_model.model_validate(example.inputs)) <= RUN_COST_MAX
+
+
 EXAMPLES = [
     pytest.param(d.id, i, id=f"{d.id}-{i}")
     for d in default_registry()
@@ -46,6 +59,10 @@ def test_worked_example_runs_to_success(embedded: Deployment, process_id: str, i
     r = client.post(f"/v1/processes/{process_id}/execution", json={"inputs": example["inputs"]})
     assert r.status_code == 201, r.text
     job_id = r.json()["jobID"]
+    if not _runs_here(process_id, index):
+        assert client.delete(f"/v1/jobs/{job_id}").status_code == 200
+        assert wait_terminal(client, job_id)["status"] == "dismissed"
+        return
     status = wait_for(
         client, job_id, lambda d: d["status"] in {"successful", "failed"}, timeout=300
     )

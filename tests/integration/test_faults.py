@@ -3,8 +3,8 @@ disk, a corrupted store, heavy downloads and bodies, many waiters, racing submit
 
 Every test drives real `dexlab serve` / `dexlab worker` processes (or, for the pool's
 back-off, a real :class:`worker.pool.WorkerPool` with real children) and real signals,
-and asserts what a client sees and what the store keeps.  The README's reliability
-table is the contract.
+and asserts what a client sees and what the store keeps.  The fault table of
+docs/reliability.md is the contract.
 """
 
 from __future__ import annotations
@@ -304,14 +304,14 @@ def stored_results_problems(dep: Deployment, finals: dict[str, dict[str, Any]]) 
 
 @pytest.mark.parametrize("backend", ["embedded", "celery-redis"])
 def test_chaos_loses_no_job_and_stores_each_result_once(backend: str, tmp_path: Path) -> None:
-    """60 small jobs while a worker process is SIGKILLed every few seconds and another is
+    """36 small jobs while a worker process is SIGKILLed every two seconds and another is
     SIGSTOPped past its lease: every job ends successful (or worker-lost after all its
     attempts), and each result is stored once, from the attempt that committed."""
     with fault_deployment(backend, tmp_path, workers=3) as (dep, tag):
         client = dep.client
         process_id = "planar3r-dexterity-map"
         ids = []
-        for n in range(60):
+        for n in range(36):
             r = client.post(MAP_URL, json={"inputs": small_map(n)})
             assert r.status_code == 201, r.text
             ids.append(r.json()["jobID"])
@@ -335,7 +335,7 @@ def test_chaos_loses_no_job_and_stores_each_result_once(backend: str, tmp_path: 
                         victim = random.choice(victims)
                         os.kill(victim, signal.SIGKILL)
                         kills.append(victim)
-                        next_kill = time.monotonic() + 3.0
+                        next_kill = time.monotonic() + 2.0
                 time.sleep(0.2)
         finally:
             frozen.stop()
@@ -351,7 +351,7 @@ def test_chaos_loses_no_job_and_stores_each_result_once(backend: str, tmp_path: 
             else:
                 assert doc["status"] == "successful", doc
         successful = [d for d in finals.values() if d["status"] == "successful"]
-        assert len(successful) >= 50, [d["status"] for d in finals.values()]
+        assert len(successful) >= 30, [d["status"] for d in finals.values()]
         assert finals[frozen_job]["attempts"] >= 2, finals[frozen_job]
         # The pool (or the Celery worker's watchdog) killed the frozen process after a lease.
         assert frozen.after_s is not None, "the frozen process was never killed"

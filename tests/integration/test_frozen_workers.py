@@ -98,14 +98,23 @@ def test_frozen_pool_processes_are_replaced_and_the_job_retried(
         assert pid_of(retried) in fresh, (retried, fresh)
         assert full_log(dep).count("showed no sign of life") == 2, dep.log()
 
-        # Full capacity again: two jobs run at once, one on each new process.
-        pair = [
-            client.post(MAP_URL, json={"inputs": map_of(301, n)}).json()["jobID"] for n in (1, 2)
-        ]
-        one, two = (wait_terminal(client, i, timeout=30) for i in pair)
-        assert one["status"] == two["status"] == "successful", (one, two)
-        assert {pid_of(one), pid_of(two)} == fresh, (one, two, fresh)
-        overlap_start = max(at(one, "started"), at(two, "started"))
-        overlap_end = min(at(one, "finished"), at(two, "finished"))
-        assert overlap_start < overlap_end, (one, two)
+        # Full capacity again: two jobs run at once, one on each new process.  (A pair
+        # may miss each other once on a loaded machine, a process slowed as the other
+        # ends its job; a second pair must then overlap.)
+        pairs = []
+        for attempt in range(2):
+            pair = [
+                client.post(MAP_URL, json={"inputs": map_of(401, 2 * attempt + n)}).json()["jobID"]
+                for n in (1, 2)
+            ]
+            one, two = (wait_terminal(client, i, timeout=30) for i in pair)
+            assert one["status"] == two["status"] == "successful", (one, two)
+            assert {pid_of(one), pid_of(two)} == fresh, (one, two, fresh)
+            pairs.append((one, two))
+            overlap_start = max(at(one, "started"), at(two, "started"))
+            overlap_end = min(at(one, "finished"), at(two, "finished"))
+            if overlap_start < overlap_end:
+                break
+        else:
+            pytest.fail(f"no two jobs ran at once: {pairs}")
         assert pool_pids(dep) == fresh

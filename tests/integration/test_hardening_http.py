@@ -22,7 +22,7 @@ import uvicorn
 from fastapi import FastAPI
 
 from service.app import create_app
-from service.config import ServiceSettings
+from service.config import Settings
 from tests.integration.servers import free_port
 
 pytestmark = pytest.mark.integration
@@ -51,8 +51,8 @@ def serve(app: FastAPI) -> Iterator[httpx.Client]:
         thread.join(timeout=30)
 
 
-def settings_for(tmp_path: Path, **overrides: Any) -> ServiceSettings:
-    return ServiceSettings(**{"data_dir": tmp_path, "workers": 0, **overrides})
+def settings_for(tmp_path: Path, **overrides: Any) -> Settings:
+    return Settings(**{"data_dir": tmp_path, "workers": 0, **overrides})
 
 
 @pytest.fixture

@@ -226,7 +226,8 @@ def _store_text(dep: Deployment) -> bytes:
     """Every byte the store holds: the SQLite files, or every row of the schema."""
     url = dep.env.get("DEXLAB_STORE_URL")
     if url is None:
-        return b"".join(p.read_bytes() for p in Path(dep.data_dir).glob("jobs.db*"))
+        files = (p for p in Path(dep.data_dir).glob("jobs.db*") if p.is_file())
+        return b"".join(p.read_bytes() for p in files)
     import psycopg
 
     rows: list[Any] = []

@@ -13,7 +13,7 @@ import pytest
 
 from service.app import create_app
 from service.auth.sessions import COOKIE_NAME, SessionSigner
-from service.config import ServiceSettings
+from service.config import Settings
 
 pytestmark = [pytest.mark.integration, pytest.mark.anyio]
 
@@ -30,7 +30,7 @@ def anyio_backend() -> str:
 
 @pytest.fixture
 async def client(tmp_path: Path) -> AsyncIterator[httpx.AsyncClient]:
-    settings = ServiceSettings(
+    settings = Settings(
         data_dir=tmp_path,
         workers=0,
         api_keys=f"alice:{ALICE}",
@@ -161,7 +161,7 @@ async def test_an_open_service_on_a_public_address_warns(
 ) -> None:
     for host, warned in (("127.0.0.1", False), ("0.0.0.0", True)):
         caplog.clear()
-        app = create_app(ServiceSettings(data_dir=tmp_path / host, workers=0, host=host))
+        app = create_app(Settings(data_dir=tmp_path / host, workers=0, host=host))
         with caplog.at_level(logging.INFO, logger="dexlab.service"):
             async with app.router.lifespan_context(app):
                 transport = httpx.ASGITransport(app=app)

@@ -47,6 +47,10 @@ def test_a_backlog_is_not_sent_twice_and_lost_messages_are_sent_again(
         broker, queue = dep.env["DEXLAB_BROKER_URL"], dep.env["DEXLAB_QUEUE"]
         body = {"inputs": {"lengths": [2, 3, 4, 5], "ground": 0, "plots": False}}
         ids = [dep.client.post(URL, json=body).json()["jobID"] for _ in range(JOBS)]
+        # A publish is not confirmed: the broker may count the last ones a moment later.
+        deadline = time.monotonic() + 10
+        while _waiting(broker, queue) < JOBS and time.monotonic() < deadline:
+            time.sleep(0.1)
         assert _waiting(broker, queue) == JOBS
         time.sleep(3)  # six sweeps, every job overdue: the queue holds one for each
         assert _waiting(broker, queue) == JOBS

@@ -25,7 +25,7 @@ import pytest
 from fastapi import FastAPI
 
 from service.app import create_app
-from service.config import ServiceSettings
+from service.config import Settings
 from service.ogc.schemas import (
     OgcConfClasses,
     OgcJobList,
@@ -113,7 +113,7 @@ async def _serve(app: FastAPI, ready: bool) -> AsyncIterator[httpx.AsyncClient]:
 async def pool(
     tmp_path_factory: pytest.TempPathFactory, receiver: Receiver
 ) -> AsyncIterator[httpx.AsyncClient]:
-    settings = ServiceSettings(
+    settings = Settings(
         data_dir=tmp_path_factory.mktemp("ogc-pool"),
         workers=1,
         heartbeat_seconds=0.5,
@@ -125,7 +125,7 @@ async def pool(
 
 @pytest.fixture(scope="module")
 async def idle(tmp_path_factory: pytest.TempPathFactory) -> AsyncIterator[httpx.AsyncClient]:
-    settings = ServiceSettings(data_dir=Path(tmp_path_factory.mktemp("ogc-idle")), workers=0)
+    settings = Settings(data_dir=Path(tmp_path_factory.mktemp("ogc-idle")), workers=0)
     async for client in _serve(create_app(settings), ready=False):
         yield client
 

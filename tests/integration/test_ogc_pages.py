@@ -18,7 +18,7 @@ import httpx
 import pytest
 
 from service.app import create_app
-from service.config import ServiceSettings
+from service.config import Settings
 from service.ogc.urls import with_format
 
 pytestmark = [pytest.mark.integration, pytest.mark.anyio]
@@ -124,7 +124,7 @@ def anyio_backend() -> str:
 
 @pytest.fixture(scope="module")
 async def client(tmp_path_factory: pytest.TempPathFactory) -> AsyncIterator[httpx.AsyncClient]:
-    settings = ServiceSettings(
+    settings = Settings(
         data_dir=Path(tmp_path_factory.mktemp("ogc-pages")), workers=1, heartbeat_seconds=0.5
     )
     app = create_app(settings)

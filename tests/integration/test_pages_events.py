@@ -15,7 +15,7 @@ import httpx
 import pytest
 
 from service.app import create_app
-from service.config import ServiceSettings
+from service.config import Settings
 from worker.registry import default_registry
 
 pytestmark = [pytest.mark.integration, pytest.mark.anyio]
@@ -67,7 +67,7 @@ async def idle_app(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> AsyncIter
     """The app with no worker (jobs stay queued) and 1-second progress streams."""
     monkeypatch.setenv("DEXLAB_EVENT_STREAM_SECONDS", "1")
     monkeypatch.setenv("DEXLAB_EVENT_POLL_SECONDS", "0.1")
-    app = create_app(ServiceSettings(data_dir=tmp_path, workers=0))
+    app = create_app(Settings(data_dir=tmp_path, workers=0))
     async with app.router.lifespan_context(app):
         yield app
 

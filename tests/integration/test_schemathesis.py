@@ -41,8 +41,9 @@ def load_schema() -> Any:
     """The document the server serves (built from the same app factory, without a
     lifespan), so the operations can be parametrized at collection time."""
     from service.app import create_app
+    from service.config import Settings
 
-    return schemathesis.openapi.from_dict(create_app().openapi())
+    return schemathesis.openapi.from_dict(create_app(Settings(workers=0)).openapi())
 
 
 SCHEMA = load_schema()

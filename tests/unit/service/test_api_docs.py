@@ -17,7 +17,7 @@ import pytest
 
 from service.api_docs import DOCS_ASSETS, REDOC_ASSETS, VENDOR_DIR, VENDOR_URL
 from service.app import create_app
-from service.config import ServiceSettings
+from service.config import Settings
 
 pytestmark = pytest.mark.anyio
 
@@ -54,7 +54,7 @@ def asset_links(html: str) -> list[str]:
 
 
 async def client_for(tmp_path: Path, root_path: str = "") -> AsyncIterator[httpx.AsyncClient]:
-    app = create_app(ServiceSettings(data_dir=tmp_path, workers=0))
+    app = create_app(Settings(data_dir=tmp_path, workers=0))
     async with app.router.lifespan_context(app):
         transport = httpx.ASGITransport(app=app, root_path=root_path)
         async with httpx.AsyncClient(transport=transport, base_url="http://dexlab.test") as c:

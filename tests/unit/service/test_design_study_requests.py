@@ -19,7 +19,7 @@ from hypothesis import event, example, given
 from hypothesis import strategies as st
 
 from service.app import create_app
-from service.config import ServiceSettings
+from service.config import Settings
 from tests.unit.worker.studies.study_requests import (
     names_a_place,
     property_settings,
@@ -39,7 +39,7 @@ CHAINS = {"chains": [{"name": "Fig 2a", "lengths": [15, 15, 15, 15]},
 def app_client(data_dir: Path) -> Iterator[Send]:
     """A blocking ``send(method, url, **kwargs)`` to the real app over httpx's ASGI
     transport, its lifespan entered, with no worker pool."""
-    app = create_app(ServiceSettings(data_dir=data_dir, workers=0))
+    app = create_app(Settings(data_dir=data_dir, workers=0))
     transport = httpx.ASGITransport(app=app)
     client = httpx.AsyncClient(transport=transport, base_url="http://dexlab.test")
     with (

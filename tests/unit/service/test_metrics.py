@@ -16,7 +16,7 @@ from prometheus_client.samples import Sample
 from starlette.datastructures import Headers
 
 from service.app import create_app
-from service.config import ServiceSettings
+from service.config import Settings
 from service.metrics.job_collector import JobStoreCollector
 from service.request_id import request_id_for
 from worker.errors import StoreUnavailable
@@ -43,7 +43,7 @@ def value(found: Iterable[Sample], name: str, **labels: str) -> float:
 
 @pytest.fixture
 async def client(tmp_path: Path) -> AsyncIterator[httpx.AsyncClient]:
-    app = create_app(ServiceSettings(data_dir=tmp_path, workers=0))
+    app = create_app(Settings(data_dir=tmp_path, workers=0))
     async with app.router.lifespan_context(app):
         transport = httpx.ASGITransport(app=app)
         async with httpx.AsyncClient(transport=transport, base_url="http://dexlab.test") as c:
@@ -80,7 +80,7 @@ async def test_metrics_are_documented_as_the_text_format(client: httpx.AsyncClie
 
 async def test_metrics_off_means_no_route(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
     monkeypatch.setenv("DEXLAB_METRICS", "0")
-    app = create_app(ServiceSettings(data_dir=tmp_path, workers=0))
+    app = create_app(Settings(data_dir=tmp_path, workers=0))
     async with app.router.lifespan_context(app):
         transport = httpx.ASGITransport(app=app)
         async with httpx.AsyncClient(transport=transport, base_url="http://dexlab.test") as c:

@@ -15,7 +15,7 @@ import pytest
 from pydantic import BaseModel, ConfigDict, Field
 
 from service.app import create_app
-from service.config import ServiceSettings
+from service.config import Settings
 from worker.contract import JobContext, JobOutcome
 from worker.processes import FamilyInfo, ProcessDefinition, ProcessExample
 from worker.registry import build_registry, default_registry, family_packages
@@ -67,7 +67,7 @@ def anyio_backend() -> str:
 @pytest.fixture
 async def client(tmp_path: Path) -> AsyncIterator[httpx.AsyncClient]:
     registry = build_registry((*family_packages(), TOY))
-    app = create_app(ServiceSettings(data_dir=tmp_path, workers=0), registry=registry)
+    app = create_app(Settings(data_dir=tmp_path, workers=0), registry=registry)
     async with app.router.lifespan_context(app):
         transport = httpx.ASGITransport(app=app)
         async with httpx.AsyncClient(transport=transport, base_url="http://dexlab.test") as c:

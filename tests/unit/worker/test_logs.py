@@ -6,6 +6,7 @@ from __future__ import annotations
 import asyncio
 import json
 import logging
+import os
 import subprocess
 import sys
 import threading
@@ -128,14 +129,29 @@ def test_the_configuration_hands_uvicorns_records_to_the_one_handler() -> None:
     )
 
 
-def test_the_format_comes_from_the_environment(monkeypatch: pytest.MonkeyPatch) -> None:
-    monkeypatch.delenv("DEXLAB_LOG_FORMAT", raising=False)
-    assert LogSettings().log_format == "text"
+def test_the_format_is_given_never_read(monkeypatch: pytest.MonkeyPatch) -> None:
+    """The logs section reads no environment (the settings tree does, once, in the
+    entry point: tests/unit/test_settings.py)."""
     monkeypatch.setenv("DEXLAB_LOG_FORMAT", "json")
-    assert LogSettings().log_format == "json"
-    monkeypatch.setenv("DEXLAB_LOG_FORMAT", "xml")
+    assert LogSettings().log_format == "text"
+    assert LogSettings(log_format="json").log_format == "json"
     with pytest.raises(ValueError, match="log_format"):
-        LogSettings()
+        LogSettings(log_format="xml")  # type: ignore[arg-type]
+
+
+@pytest.mark.parametrize("log_format", ["json", "text"])
+def test_a_process_knows_the_format_it_writes(log_format: str) -> None:
+    """What a pool's supervisor hands its spawned processes (they log as it does)."""
+    script = (
+        "from worker.logs import configure_logging, current_log_format\n"
+        "print(current_log_format())\n"
+        f"configure_logging({log_format!r})\n"
+        "print(current_log_format())\n"
+    )
+    done = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True,
+                          timeout=60, check=True,
+                          env={**os.environ, "DEXLAB_LOG_FORMAT": "json"})  # fmt: skip
+    assert done.stdout.split() == ["text", log_format]
 
 
 def test_printed_output_becomes_json_lines_in_a_process_that_asks() -> None:

@@ -34,6 +34,7 @@ from worker.families.planar_parallel.result_paths import (
     OPTIMISATION_RESULT_PATHS,
 )
 from worker.families.planar_parallel.specs import ConditioningMapSpec, OptimisationSpec
+from worker.families.planar_parallel.study import CONDITIONING_MAP_KERNEL
 from worker.processes import FamilyInfo, ProcessDefinition, ProcessFile, data_files, figure_files
 
 __all__ = ["CONDITIONING_MAP", "FAMILY", "OPTIMISATION", "PROCESSES"]
@@ -116,6 +117,7 @@ CONDITIONING_MAP = ProcessDefinition(
     cost_limit=CONDITIONING_MAP_COST_LIMIT,
     cost_unit=COST_UNIT,
     time_limit_s=CONDITIONING_MAP_TIME_LIMIT_S,
+    study_kernel=CONDITIONING_MAP_KERNEL,
 )
 
 OPTIMISATION = ProcessDefinition(

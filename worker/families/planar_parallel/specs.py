@@ -19,7 +19,14 @@ from __future__ import annotations
 import math
 from typing import Annotated, Any, Literal
 
-from pydantic import BeforeValidator, Field, JsonValue, field_validator, model_validator
+from pydantic import (
+    BeforeValidator,
+    Field,
+    JsonValue,
+    ValidationInfo,
+    field_validator,
+    model_validator,
+)
 
 from worker.common.field_errors import field_error
 from worker.common.numeric_ranges import (
@@ -45,6 +52,7 @@ from worker.families.planar_parallel.optimisation_spec import (
     OptimisationSpec,
     sweep_deltas,
 )
+from worker.study_kernels import in_study_template
 
 __all__ = [
     "DEFAULT_DELTA_RANGE",
@@ -219,7 +227,11 @@ class ConditioningMapSpec(FrozenSpec):
         return value
 
     @model_validator(mode="after")
-    def _architecture_fits_the_type(self) -> ConditioningMapSpec:
+    def _architecture_fits_the_type(self, info: ValidationInfo) -> ConditioningMapSpec:
+        """The type's inputs, then (the study kernel's, per design, in a design study's
+        template: :func:`~worker.study_kernels.in_study_template`) the dimensions:
+        eq (12)'s l2 >= l1, the lengths' ratio, chains that can meet, a grid that fits."""
+        dimensions = not in_study_template(info.context)
         if self.l2 is None and self.actuation != "telescopic-leg":
             raise ValueError(f"l2 is required for the {self.actuation} type")
         if self.actuation != "proximal-arm":
@@ -230,12 +242,14 @@ class ConditioningMapSpec(FrozenSpec):
                 )
             if self.actuation == "telescopic-leg" and self.e is None:
                 raise ValueError("the telescopic-leg type needs 'e' (its pivots are at (±e, 0))")
-            return self._grid_fits_the_robot()
+            return self._grid_fits_the_robot() if dimensions else self
         if (self.e is None) == (self.architecture is None):
             raise ValueError(
                 "give exactly one of 'e' (the half-distance of the actuated joints) and "
                 "'architecture': 'isotropic' (e by eq 12)"
             )
+        if not dimensions:
+            return self
         if self.architecture == "isotropic" and self.l2 is not None and self.l2 < self.l1:
             raise ValueError(
                 f"architecture 'isotropic' needs l2 >= l1 (eq 12 gives e = (√2/2)(l2 - l1) "

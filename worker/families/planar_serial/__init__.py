@@ -38,6 +38,7 @@ from worker.families.planar_serial.result_paths import (
     SYNTHESIS_RESULT_PATHS,
 )
 from worker.families.planar_serial.specs import DexterityMapSpec, SynthesisSpec
+from worker.families.planar_serial.study import DEXTERITY_MAP_KERNEL
 from worker.processes import FamilyInfo, ProcessDefinition, ProcessFile, data_files, figure_files
 
 __all__ = ["DESIGN", "DEXTERITY_MAP", "FAMILY", "PROCESSES", "SYNTHESIS"]
@@ -138,6 +139,7 @@ DEXTERITY_MAP = ProcessDefinition(
     cost_limit=COST_LIMIT,
     sync_cost_limit=SYNC_COST_LIMIT,
     time_limit_s=TIME_LIMIT_S,
+    study_kernel=DEXTERITY_MAP_KERNEL,
 )
 
 SYNTHESIS = ProcessDefinition(

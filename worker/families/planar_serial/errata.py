@@ -28,6 +28,7 @@ from worker.families.planar_serial.examples import (
 )
 from worker.families.planar_serial.jobs.dexterity_evaluation import FULL_DEXTERITY_TOL
 from worker.families.planar_serial.jobs.regions import describe_bands
+from worker.families.planar_serial.kinematics.inputs import Arm
 from worker.families.planar_serial.specs import (
     DexterityMapSpec,
     PolynomialTrajectory,
@@ -101,6 +102,7 @@ def _swapped_band_note(
     swapped: tuple[float, float, float], ideal: tuple[float, float, float]
 ) -> str:
     """Example 1, Case 2: the paper's band for the swapped arm vs the exact one."""
+    swapped, ideal = Arm(*swapped), Arm(*ideal)  # the paper's designs: positive lengths
     return (
         "Example 1, Case 2: the paper gives the high-dexterity band of the arm with l2 and l3 "
         "swapped as 8 < d <= 16 (eq 13; another extraction of the paper reads 8 < d <= 9); "

@@ -19,6 +19,7 @@ from pydantic import (
     Field,
     JsonValue,
     Tag,
+    ValidationInfo,
     field_validator,
     model_validator,
 )
@@ -38,6 +39,8 @@ from worker.families.planar_serial.joint_limits_input import (
     JointLimitsDeg,
     checked_joint_limits_deg,
 )
+from worker.families.planar_serial.kinematics.inputs import Arm
+from worker.study_kernels import in_study_template
 
 __all__ = [
     "MAX_ORIENTATION_STEP_DEG",
@@ -315,11 +318,17 @@ class _ArmSpec(FrozenSpec):
 
     @field_validator("links")
     @classmethod
-    def _spread(cls, links: tuple[float, float, float]) -> tuple[float, float, float]:
-        problem = length_ratio_problem(links, "links")
-        if problem is not None:
-            raise ValueError(problem)
-        return links
+    def _spread(
+        cls, links: tuple[float, float, float], info: ValidationInfo
+    ) -> tuple[float, float, float]:
+        """The links, checked once here and kept as an :class:`Arm` that the family's
+        kinematics trust.  A design study's template skips the spread: its kernel checks
+        each design's links."""
+        if not in_study_template(info.context):
+            problem = length_ratio_problem(links, "links")
+            if problem is not None:
+                raise ValueError(problem)
+        return Arm(*links)
 
 
 class _DesignSpec(FrozenSpec):
@@ -342,11 +351,12 @@ class DexterityMapSpec(_TaskSpec, _ArmSpec):
     """Inputs of ``planar3r-dexterity-map``: d_z and D = d_z/3 over a grid."""
 
     @model_validator(mode="after")
-    def _grid_meets_the_reach(self) -> DexterityMapSpec:
+    def _grid_meets_the_reach(self, info: ValidationInfo) -> DexterityMapSpec:
         """A grid that holds no point of the reachable annulus (unlimited joints: radii
         max(0, 2 max(l) - sum(l)) to sum(l); joint limits only shrink it) would map
-        nothing."""
-        if self.grid.bounds is None:
+        nothing.  A design study's template skips it: its kernel checks each design
+        (:mod:`worker.families.planar_serial.study`)."""
+        if self.grid.bounds is None or in_study_template(info.context):
             return self
         x_min, x_max, y_min, y_max = self.grid.bounds
         outer = sum(self.links)

@@ -24,6 +24,8 @@ from worker.studies.spec import StudySpec
 REGISTRY = default_registry()
 SPM = dict(STUDY_EXAMPLES[0].inputs)
 ARM = dict(STUDY_EXAMPLES[3].inputs)
+#: A study of a process without a kernel.
+UNBATCHED = dict(STUDY_EXAMPLES[1].inputs)
 
 
 def choice_of(inputs: dict[str, Any]) -> Any:
@@ -38,8 +40,13 @@ def test_a_study_is_batched_when_its_kernel_covers_it() -> None:
     assert choice_of({**SPM, "engine": "per-design"}).why == (
         "the study asks for the per-design engine"
     )
-    arm = choice_of(ARM)
-    assert arm.engine == "per-design" and "has no study kernel" in arm.why
+    assert choice_of(ARM).engine == "batched"
+    plain = choice_of(UNBATCHED)
+    assert plain.engine == "per-design" and "has no study kernel" in plain.why
+    region = choice_of({**ARM, "objectives": {"regions[].d_z_min|min": "max"}})
+    assert "does not cover the objective 'regions[].d_z_min|min'" in region.why
+    limits = choice_of({**ARM, "vary": {"joint_limits_deg[0][1]": [90, 180, 3]}})
+    assert "cannot vary 'joint_limits_deg[0][1]'" in limits.why
     uncovered = choice_of({**SPM, "objectives": {"type_ii_singularity.min_abs_det_a": "max"}})
     assert "does not cover the objective 'type_ii_singularity.min_abs_det_a'" in uncovered.why
     tilt = choice_of({**SPM, "fixed": {"beta_deg": 90, "gamma_deg": 0},
@@ -49,10 +56,10 @@ def test_a_study_is_batched_when_its_kernel_covers_it() -> None:
 
 
 def test_asking_for_a_batched_study_that_cannot_be_is_a_422_at_engine() -> None:
-    problems = dry_check(StudySpec.model_validate({**ARM, "engine": "batched"}))
+    problems = dry_check(StudySpec.model_validate({**UNBATCHED, "engine": "batched"}))
     assert [p["field"] for p in problems] == ["inputs.engine"]
     assert (
-        "cannot be batched: planar3r-dexterity-map has no study kernel" in (problems[0]["message"])
+        "cannot be batched: planar2dof-optimisation has no study kernel" in (problems[0]["message"])
     )
     assert dry_check(StudySpec.model_validate({**SPM, "engine": "batched"})) == []
 

@@ -81,10 +81,13 @@ def test_chunks_cover_every_design_once_in_order() -> None:
 def test_the_cost_is_designs_times_the_first_designs_share_of_the_limit() -> None:
     process = default_registry().get("planar3r-dexterity-map")
     assert process is not None
-    study = spec(vary={"links[2]": [6, 10, 1000]})
+    study = spec(vary={"links[2]": [6, 10, 1000]}, engine="per-design")
     share = 25 / process.cost_limit  # a 5 x 5 closed-form map
     assert study_cost(study) == pytest.approx(1000 * share * 1e6, abs=1)
     assert study_cost(study) <= STUDY.cost_limit
+    # through the kernel: one task point (closed form) and the rest, 2 units a design
+    batched = spec(vary={"links[2]": [6, 10, 1000]})
+    assert study_cost(batched) == pytest.approx(1000 * 2 / process.cost_limit * 1e6, abs=1)
 
 
 def test_the_whole_study_in_one_process() -> None:

@@ -10,18 +10,21 @@ from __future__ import annotations
 
 import math
 
+import numpy as np
+
 from worker.common.grids import WorkspaceGrid
 from worker.families.planar_parallel import kinematics as pp
+from worker.families.planar_parallel.kinematics import study_kernel
+from worker.families.planar_parallel.kinematics.study_kernel import DEFAULT_GRID_MARGIN
 from worker.families.planar_parallel.specs import ConditioningMapSpec, GridSpec
 
-__all__ = ["DEFAULT_GRID_MARGIN", "architecture_from_spec", "default_bounds", "map_grid"]
-
-#: The default grid reaches this fraction beyond the workspace on every side.
-DEFAULT_GRID_MARGIN = 0.03
-#: Telescopic legs reach everywhere: the default grid spans this many times e.
-TELESCOPIC_SPAN = 3.0
-#: Linear drives reach a band |y| <= l2 unbounded in x: the default grid spans |x| <= 2 l2.
-LINEAR_DRIVE_X_SPAN = 2.0
+__all__ = [
+    "DEFAULT_GRID_MARGIN",
+    "architecture_from_spec",
+    "default_bounds",
+    "map_grid",
+    "robot_from_spec",
+]
 
 
 def architecture_from_spec(spec: ConditioningMapSpec) -> pp.Architecture:
@@ -29,6 +32,11 @@ def architecture_from_spec(spec: ConditioningMapSpec) -> pp.Architecture:
     if spec.architecture == "isotropic":
         return pp.isotropic_architecture(_l2(spec), spec.l1)
     return pp.Architecture(spec.actuation, spec.l1, _l2(spec), spec.e or 0.0)
+
+
+def robot_from_spec(spec: ConditioningMapSpec) -> pp.Robot:
+    """The job's robot, checked once: its Architecture and working mode."""
+    return pp.Robot(architecture_from_spec(spec), spec.working_mode)
 
 
 def _l2(spec: ConditioningMapSpec) -> float:
@@ -40,16 +48,12 @@ def default_bounds(arch: pp.Architecture) -> tuple[float, float, float, float]:
 
     Proximal arm: |x| <= l1 + l2 - e, |y| <= l1 + l2 (both chains reach); telescopic
     leg: the square |x|, |y| <= 3e (l1 if e = 0); linear drive: |x| <= 2 l2, |y| <= l2.
+    The study kernel's bounds (:func:`.kinematics.study_kernel.default_bounds`) of one
+    design, so that a study's grids are the job's.
     """
-    if arch.actuation == "proximal-arm":
-        reach = arch.l1 + arch.l2
-        half_x, half_y = max(reach - arch.e, 0.05 * reach), reach
-    elif arch.actuation == "telescopic-leg":
-        half_x = half_y = TELESCOPIC_SPAN * arch.e if arch.e > 0 else arch.l1
-    else:
-        half_x, half_y = LINEAR_DRIVE_X_SPAN * arch.l2, arch.l2
-    grow = 1.0 + DEFAULT_GRID_MARGIN
-    return -grow * half_x, grow * half_x, -grow * half_y, grow * half_y
+    lengths = np.array([[arch.l1, arch.l2, arch.e]])
+    x0, x1, y0, y1 = study_kernel.default_bounds(arch.actuation, lengths)[0].tolist()
+    return x0, x1, y0, y1
 
 
 def map_grid(spec: GridSpec, arch: pp.Architecture) -> WorkspaceGrid:

@@ -22,9 +22,9 @@ from worker.contract import Artifact, JobContext, JobOutcome
 from worker.families.planar_parallel import kinematics as pp
 from worker.families.planar_parallel.errata import conditioning_map_errata_notes
 from worker.families.planar_parallel.jobs.architecture import (
-    architecture_from_spec,
     describe_architecture,
     map_grid,
+    robot_from_spec,
 )
 from worker.families.planar_parallel.jobs.kappa_region import (
     KappaRegionSection,
@@ -55,20 +55,20 @@ def run_conditioning_map(spec: ConditioningMapSpec, ctx: JobContext) -> JobOutco
     """Run the job: validated inputs in, result document + artifacts + notes out."""
     progress = ProgressReporter(ctx)
     progress.report(0.0, "starting")
-    arch = architecture_from_spec(spec)
-    mode = spec.working_mode
+    robot = robot_from_spec(spec)  # the job's one checked robot, passed on
+    arch = robot.arch
     grid = map_grid(spec.grid, arch)
-    cmap = _grid_map(arch, grid, mode, progress)
+    cmap = _grid_map(robot, grid, progress)
 
     region = None
     if spec.inverse_condition_limit is not None:
         progress.report(42.0, "W_kappa0 boundary")
-        region = kappa_region_section(arch, spec.inverse_condition_limit, mode, grid,
+        region = kappa_region_section(robot, spec.inverse_condition_limit, grid,
                                       cmap.inverse_condition, spec.length_unit)  # fmt: skip
     progress.report(45.0, "isotropic point and given points")
     points = np.asarray(spec.points or (), dtype=float).reshape(-1, 2)
-    entries = point_entries(arch, points, mode)
-    isotropic = _isotropic_entry(arch, mode)
+    entries = point_entries(robot, points)
+    isotropic = _isotropic_entry(robot)
 
     result = _result(spec, arch, grid, cmap, region, isotropic, entries)
     notes = _notes(spec, arch, cmap, region, isotropic, entries)
@@ -83,16 +83,15 @@ def run_conditioning_map(spec: ConditioningMapSpec, ctx: JobContext) -> JobOutco
     return JobOutcome(result=result, artifacts=artifacts, notes=tuple(notes), errata=tuple(errata))
 
 
-def _grid_map(
-    arch: pp.Architecture, grid: WorkspaceGrid, mode: tuple[int, int], progress: ProgressReporter
-) -> pp.ConditioningMap:
+def _grid_map(robot: pp.Robot, grid: WorkspaceGrid, progress: ProgressReporter
+              ) -> pp.ConditioningMap:  # fmt: skip
     """The map in row blocks (progress 2-40 %), joined into one ConditioningMap."""
     x, y = grid.x, grid.y
     edges = np.linspace(0, y.size, min(MAP_ROW_BLOCKS, y.size) + 1).astype(int).tolist()
     blocks = []
     on_block = progress.span(2.0, 40.0, "conditioning map")
     for start, stop in itertools.pairwise(edges):
-        blocks.append(pp.conditioning_map(arch, x, y[start:stop], mode))
+        blocks.append(pp.robot_map(robot, x, y[start:stop]))
         on_block(stop, y.size)
     return pp.ConditioningMap(
         x,
@@ -105,19 +104,19 @@ def _grid_map(
     )
 
 
-def _isotropic_entry(arch: pp.Architecture, mode: tuple[int, int]) -> dict[str, Any] | None:
+def _isotropic_entry(robot: pp.Robot) -> dict[str, Any] | None:
     """The isotropic (or best-conditioned) point on x = 0 below the base, or None.
 
     ``degenerate``: a pressure angle there is below :data:`DEGENERATE_PRESSURE_ANGLE_DEG`,
     so A is (nearly) singular and 1/kappa -> 1 only because sigma_1 = sigma_2 -> infinity
     (the paper's right-triangle configuration, Fig. 3, eq 9): not a usable optimum.
     """
-    x, y = pp.isotropic_point(arch, mode)
+    x, y = pp.robot_isotropic_point(robot)
     if not (math.isfinite(x) and math.isfinite(y)):
         return None
     point = np.array([x, y])
-    value = float(pp.inverse_condition(arch, point, mode))
-    beta = float(np.degrees(np.min(pp.pressure_angles(arch, point, mode))))
+    value = float(pp.robot_inverse_condition(robot, point))
+    beta = float(np.degrees(np.min(pp.robot_pressure_angles(robot, point))))
     if not (math.isfinite(value) and math.isfinite(beta)):  # out of reach by a rounding hair
         return None
     degenerate = not beta >= DEGENERATE_PRESSURE_ANGLE_DEG

@@ -60,18 +60,16 @@ class KappaRegionSection:
 
 
 def kappa_region_section(
-    arch: pp.Architecture,
+    robot: pp.Robot,
     limit: float,
-    working_mode: tuple[int, int],
     grid: WorkspaceGrid,
     inverse_condition: NDArray[np.float64],
     length_unit: str,
 ) -> KappaRegionSection:
-    """W_kappa0's boundary and area, checked against the map (``inverse_condition``
+    """W_kappa0's boundary and area for the job's robot and its (validated) limit,
+    checked against the map (``inverse_condition``
     (ny, nx) on ``grid``); areas in ``length_unit`` squared."""
-    region = pp.kappa_region_boundary(
-        arch, limit, working_mode, columns=BOUNDARY_COLUMNS, rows=BOUNDARY_ROWS
-    )
+    region = pp.robot_kappa_region(robot, limit, (BOUNDARY_COLUMNS, BOUNDARY_ROWS))
     inside = np.nan_to_num(inverse_condition, nan=-1.0) >= limit
     area_grid = int(inside.sum()) * grid.cell_area
     reachable_grid = int(np.isfinite(inverse_condition).sum()) * grid.cell_area

@@ -42,6 +42,8 @@ CSV_NAME, NPZ_NAME = "sweep.csv", "optimisation.npz"
 FIG7_ANGLES_DEG = (20.0, 25.0, 30.0, 35.0, 40.0, 45.0)
 FIG7_SAMPLES = 301
 FloatArray = NDArray[np.float64]
+#: The paper's working mode, the optimum design's (eq 12).
+PAPER_MODE = (1, -1)
 
 
 def optimisation_artifacts(
@@ -51,17 +53,21 @@ def optimisation_artifacts(
     outcome: SweepOutcome,
     progress: ProgressReporter,
 ) -> tuple[Artifact, ...]:
-    """Plots (unless ``spec.plots`` is false) then the CSV and NPZ."""
-    arrays = _figure_arrays(spec, limit, outcome)
+    """Plots (unless ``spec.plots`` is false) then the CSV and NPZ. The chosen design
+    is checked once, as a Robot in the paper's working mode, and passed on."""
+    robot = None
+    if outcome.design is not None:
+        robot = pp.Robot(pp.isotropic_architecture(outcome.design.row.delta), PAPER_MODE)
+    arrays = _figure_arrays(spec, limit, outcome, robot)
     artifacts: tuple[Artifact, ...] = ()
     if spec.plots:
-        artifacts = _plots(spec, limit, limit_delta, outcome, arrays, progress)
+        artifacts = _plots(spec, limit, limit_delta, outcome, arrays, progress, robot)
     progress.report(96.0, "data files")
     return (*artifacts, *_data(spec, outcome, arrays, limit))
 
 
 def _figure_arrays(
-    spec: OptimisationSpec, limit: float, outcome: SweepOutcome
+    spec: OptimisationSpec, limit: float, outcome: SweepOutcome, robot: pp.Robot | None
 ) -> dict[str, FloatArray]:
     """Fig. 7 curves, and Figs 6 and 9 of the chosen design when there is one."""
     span = spec.sweep_range if spec.delta is None else DEFAULT_DELTA_RANGE
@@ -75,15 +81,13 @@ def _figure_arrays(
             [pp.condition_limit_from_pressure_angle(a, deltas) for a in angles]
         ),
     }
-    if outcome.design is None:
+    if outcome.design is None or robot is None:
         return arrays
-    row = outcome.design.row
-    rect = row.rectangle
-    arch = pp.isotropic_architecture(row.delta)
+    rect = outcome.design.row.rectangle
     xs = np.linspace(-rect.b / 2, rect.b / 2, FIG9_MESH)
     ys = np.linspace(-rect.H_prime - rect.h / 2, -rect.H_prime + rect.h / 2, FIG9_MESH)
-    inside = pp.conditioning_map(arch, xs, ys)
-    x0, x1, y0, y1 = default_bounds(arch)
+    inside = pp.robot_map(robot, xs, ys)
+    x0, x1, y0, y1 = default_bounds(robot.arch)
     mx = np.linspace(x0, x1, MAP_POINTS_PER_AXIS)
     my = np.linspace(y0, y1, MAP_POINTS_PER_AXIS)
     arrays |= {
@@ -93,7 +97,7 @@ def _figure_arrays(
         "rectangle_min_pressure_angle_deg": np.degrees(inside.min_pressure_angle),
         "map_x": mx,
         "map_y": my,
-        "map_inverse_condition": pp.conditioning_map(arch, mx, my).inverse_condition,
+        "map_inverse_condition": pp.robot_map(robot, mx, my).inverse_condition,
     }
     return arrays
 
@@ -113,6 +117,7 @@ def _plots(
     outcome: SweepOutcome,
     arrays: dict[str, FloatArray],
     progress: ProgressReporter,
+    robot: pp.Robot | None,
 ) -> tuple[Artifact, ...]:
     """Figs 7 and 8 (a sweep only), then the design's Figs 9 and 6 (progress 84-96 %)."""
     progress.report(84.0, "plot of 1/kappa0 against [beta] and delta (Fig. 7)")
@@ -139,14 +144,15 @@ def _plots(
         artifacts += figure_artifacts(
             fig8, "design_indices", "S/S_max, mean 1/kappa and eta against delta (Fig. 8)"
         )
-    if outcome.design is not None:
-        artifacts += _design_plots(spec, limit, outcome.design.row, arrays, setting, progress)
+    if outcome.design is not None and robot is not None:
+        artifacts += _design_plots(spec, limit, outcome.design.row, robot, arrays, setting,
+                                   progress)  # fmt: skip
     return tuple(artifacts)
 
 
 def _design_plots(
-    spec: OptimisationSpec, limit: float, row: pp.SweepRow, arrays: dict[str, FloatArray],
-    setting: str, progress: ProgressReporter,
+    spec: OptimisationSpec, limit: float, row: pp.SweepRow, robot: pp.Robot,
+    arrays: dict[str, FloatArray], setting: str, progress: ProgressReporter,
 ) -> tuple[Artifact, ...]:  # fmt: skip
     progress.report(90.0, "plot of the rectangle (Fig. 9)")
     rect = row.rectangle
@@ -165,8 +171,7 @@ def _design_plots(
     workspace = plots.rectangle_workspace_figure(
         arrays["map_x"], arrays["map_y"], arrays["map_inverse_condition"],
         inverse_condition_limit=limit, rectangle=(rect.b, rect.h, rect.H_prime),
-        joints=[[e, 0.0], [-e, 0.0]], isotropic_point=pp.isotropic_point(
-            pp.isotropic_architecture(row.delta)),
+        joints=[[e, 0.0], [-e, 0.0]], isotropic_point=pp.robot_isotropic_point(robot),
         title=rf"The rectangle $W_\lambda$ inside $W_{{\kappa 0}}$ (Fig. 6), {setting}",
         subtitle=_design_text(row),
     )  # fmt: skip

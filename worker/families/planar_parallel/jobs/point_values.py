@@ -27,10 +27,8 @@ def _list(values: NDArray[np.float64]) -> list[float | None] | None:
     return None if all(v is None for v in entries) else entries
 
 
-def point_entries(
-    arch: pp.Architecture, points: NDArray[np.float64], working_mode: tuple[int, int]
-) -> list[dict[str, Any]]:
-    """One entry per point (k, 2), in order.
+def point_entries(robot: pp.Robot, points: NDArray[np.float64]) -> list[dict[str, Any]]:
+    """One entry per (validated, finite) point (k, 2) of the job's robot, in order.
 
     Keys: x, y, reachable, inverse_condition (eq 7), pressure_angles_deg [beta_1, beta_2]
     (eq 15), min_pressure_angle_deg, joint_angles_deg [th_11, th_12] (eq 2; proximal arm,
@@ -39,10 +37,10 @@ def point_entries(
     """
     if points.shape[0] == 0:
         return []
-    inverse = pp.inverse_condition(arch, points, working_mode)
-    angles = np.degrees(pp.pressure_angles(arch, points, working_mode))
-    joints, reachable = pp.inverse_kinematics(arch, points, working_mode)
-    proximal = arch.actuation == "proximal-arm"
+    inverse = pp.robot_inverse_condition(robot, points)
+    angles = np.degrees(pp.robot_pressure_angles(robot, points))
+    joints, reachable = pp.robot_inverse_kinematics(robot, points)
+    proximal = robot.arch.actuation == "proximal-arm"
     entries = []
     for k, (x, y) in enumerate(points.tolist()):
         ok = bool(reachable[k])

@@ -25,14 +25,17 @@ allowable pressure angle (eqs 15-17) in
 :mod:`.reference`; their public names are re-exported
 here, so this module is the one to import.
 
+A job checks its robot once: :class:`~.model.Robot` (an Architecture and a working
+mode) is built from its validated inputs and passed on; the functions named
+``robot_*`` take it and trust it (no checks), the others check
+their arguments and call them.
+
 Errors: bad parameters raise ValueError ("The 'x' parameter of f must be ... Got ...
 instead."); numerical outcomes (nothing reachable, no rectangle) are data: NaN fields,
 ``found`` flags and a ``message``.
 """
 
 from __future__ import annotations
-
-from dataclasses import dataclass
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -42,35 +45,50 @@ from worker.families.planar_parallel.kinematics.isotropic import (
     isotropic_architecture as isotropic_architecture,
 )
 from worker.families.planar_parallel.kinematics.isotropic import isotropic_point as isotropic_point
+from worker.families.planar_parallel.kinematics.isotropic import (
+    robot_isotropic_point as robot_isotropic_point,
+)
 from worker.families.planar_parallel.kinematics.kappa_region import KappaRegion as KappaRegion
 from worker.families.planar_parallel.kinematics.kappa_region import (
     kappa_region_boundary as kappa_region_boundary,
+)
+from worker.families.planar_parallel.kinematics.kappa_region import (
+    robot_kappa_region as robot_kappa_region,
 )
 from worker.families.planar_parallel.kinematics.model import Actuation as Actuation
 from worker.families.planar_parallel.kinematics.model import Architecture as Architecture
 from worker.families.planar_parallel.kinematics.model import (
     BoolArray,
     FloatArray,
-    chain_components,
     chain_terms,
     checked_mode,
     checked_points,
-    inverse_condition_kernel,
-    inverse_condition_of_components,
-    joints_of_components,
 )
+from worker.families.planar_parallel.kinematics.model import Robot as Robot
 from worker.families.planar_parallel.kinematics.pressure import (
     condition_limit_from_pressure_angle as condition_limit_from_pressure_angle,
 )
 from worker.families.planar_parallel.kinematics.pressure import (
     max_condition_limit as max_condition_limit,
 )
-from worker.families.planar_parallel.kinematics.pressure import pressure_angles_at
 from worker.families.planar_parallel.kinematics.reference import (
     reference_jacobian as reference_jacobian,
 )
 from worker.families.planar_parallel.kinematics.reference import (
     sampled_inverse_condition as sampled_inverse_condition,
+)
+from worker.families.planar_parallel.kinematics.robot_values import (
+    ConditioningMap as ConditioningMap,
+)
+from worker.families.planar_parallel.kinematics.robot_values import (
+    robot_inverse_condition as robot_inverse_condition,
+)
+from worker.families.planar_parallel.kinematics.robot_values import (
+    robot_inverse_kinematics as robot_inverse_kinematics,
+)
+from worker.families.planar_parallel.kinematics.robot_values import robot_map as robot_map
+from worker.families.planar_parallel.kinematics.robot_values import (
+    robot_pressure_angles as robot_pressure_angles,
 )
 from worker.families.planar_parallel.kinematics.sweep import DesignSweep as DesignSweep
 from worker.families.planar_parallel.kinematics.sweep import SweepRow as SweepRow
@@ -93,6 +111,7 @@ __all__ = [
     "DesignSweep",
     "KappaRegion",
     "Rectangle",
+    "Robot",
     "SweepRow",
     "condition_limit_from_pressure_angle",
     "conditioning_map",
@@ -109,6 +128,12 @@ __all__ = [
     "pressure_angles",
     "rectangle_min_pressure_angle",
     "reference_jacobian",
+    "robot_inverse_condition",
+    "robot_inverse_kinematics",
+    "robot_isotropic_point",
+    "robot_kappa_region",
+    "robot_map",
+    "robot_pressure_angles",
     "sampled_inverse_condition",
     "workspace_area",
 ]
@@ -133,8 +158,9 @@ def inverse_kinematics(
     """
     arch = _checked_arch(arch, "inverse_kinematics")
     p = checked_points(points, "inverse_kinematics")
-    terms = chain_terms(arch, checked_mode(working_mode, "inverse_kinematics"), p)
-    return terms.joints, terms.reachable
+    return robot_inverse_kinematics(
+        Robot(arch, checked_mode(working_mode, "inverse_kinematics")), p
+    )
 
 
 def jacobian(
@@ -164,7 +190,7 @@ def inverse_condition(
     arch = _checked_arch(arch, "inverse_condition")
     p = checked_points(points, "inverse_condition")
     mode = checked_mode(working_mode, "inverse_condition")
-    return inverse_condition_kernel(arch, mode, p[..., 0], p[..., 1])
+    return robot_inverse_condition(Robot(arch, mode), p)
 
 
 def pressure_angles(
@@ -182,27 +208,7 @@ def pressure_angles(
     arch = _checked_arch(arch, "pressure_angles")
     p = checked_points(points, "pressure_angles")
     mode = checked_mode(working_mode, "pressure_angles")
-    reachable = np.isfinite(inverse_condition_kernel(arch, mode, p[..., 0], p[..., 1]))
-    return pressure_angles_at(arch, p[..., 0], p[..., 1], reachable)
-
-
-@dataclass(frozen=True)
-class ConditioningMap:
-    """1/kappa and pressure angles on the grid x (nx,) by y (ny,); arrays are (ny, nx, ...).
-
-    reachable (ny, nx) bool; inverse_condition (ny, nx), NaN where unreachable;
-    pressure_angles (ny, nx, 2) rad; min_pressure_angle (ny, nx) = min(beta_1, beta_2) rad
-    (the paper's beta_min, printed "min(beta_1 - beta_2)"); joints (ny, nx, 2) as
-    :func:`inverse_kinematics`.
-    """
-
-    x: FloatArray
-    y: FloatArray
-    reachable: BoolArray
-    inverse_condition: FloatArray
-    pressure_angles: FloatArray
-    min_pressure_angle: FloatArray
-    joints: FloatArray
+    return robot_pressure_angles(Robot(arch, mode), p)
 
 
 def _checked_axis(values: ArrayLike, name: str, function: str) -> FloatArray:
@@ -224,19 +230,7 @@ def conditioning_map(
     xs = _checked_axis(x, "x", "conditioning_map")
     ys = _checked_axis(y, "y", "conditioning_map")
     mode = checked_mode(working_mode, "conditioning_map")
-    shape = (ys.size, xs.size)
-    lengths = (arch.l1, arch.l2, arch.e)
-    chains = chain_components(arch.actuation, lengths, mode, xs[None, :], ys[:, None])
-    reachable = np.broadcast_to(chains[0][0] & chains[1][0], shape)
-    inverse = np.where(reachable, inverse_condition_of_components(*chains), np.nan)
-    joints = np.stack(
-        [np.broadcast_to(q, shape) for q in joints_of_components(arch.actuation, chains)], -1
-    )
-    joints[~reachable] = np.nan
-    angles = pressure_angles_at(arch, xs[None, :], ys[:, None], reachable)
-    return ConditioningMap(
-        xs, ys, reachable, inverse, angles, np.fmin(angles[..., 0], angles[..., 1]), joints
-    )
+    return robot_map(Robot(arch, mode), xs, ys)
 
 
 def workspace_area(mask: ArrayLike, x: ArrayLike, y: ArrayLike) -> float:

@@ -16,13 +16,14 @@ from worker.common.parameter_errors import bad_parameter
 from worker.families.planar_parallel.kinematics.model import (
     Architecture,
     FloatArray,
+    Robot,
     chain_components,
     checked_mode,
     finite_real,
     inverse_condition_kernel,
 )
 
-__all__ = ["isotropic_architecture", "isotropic_point"]
+__all__ = ["isotropic_architecture", "isotropic_point", "robot_isotropic_point"]
 
 HALF_SQRT2 = math.sqrt(0.5)
 PAPER_MODE = (1, -1)
@@ -64,7 +65,12 @@ def isotropic_point(
     """
     if not isinstance(arch, Architecture):
         raise bad_parameter("arch", "isotropic_point", "an Architecture", arch)
-    mode = checked_mode(working_mode, "isotropic_point")
+    return robot_isotropic_point(Robot(arch, checked_mode(working_mode, "isotropic_point")))
+
+
+def robot_isotropic_point(robot: Robot) -> tuple[float, float]:
+    """:func:`isotropic_point` of a checked :class:`~.model.Robot` (no checks)."""
+    arch, mode = robot.arch, robot.mode
     if _is_eq12(arch) and mode == PAPER_MODE:
         return 0.0, -HALF_SQRT2 * (arch.l1 + arch.l2)
     if arch.actuation == "telescopic-leg" and arch.e > 0:

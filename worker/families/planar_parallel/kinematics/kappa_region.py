@@ -36,11 +36,12 @@ from worker.families.planar_parallel.kinematics.maxima import local_maxima
 from worker.families.planar_parallel.kinematics.model import (
     Architecture,
     FloatArray,
+    Robot,
     checked_limit,
     checked_mode,
 )
 
-__all__ = ["KappaRegion", "kappa_region_boundary"]
+__all__ = ["KappaRegion", "kappa_region_boundary", "robot_kappa_region"]
 
 #: The area is refined to this fraction of itself, or of FLOOR_FRACTION x the reachable
 #: area in the search box if that is larger.
@@ -241,6 +242,17 @@ def kappa_region_boundary(
         and math.isfinite(float(x_half_span)) and float(x_half_span) > 0
     ):  # fmt: skip
         raise bad_parameter("x_half_span", function, "a positive length", x_half_span)
+    half_span = None if x_half_span is None else float(x_half_span)
+    return robot_kappa_region(Robot(arch, mode), value, (count, scans), half_span)
+
+
+def robot_kappa_region(
+    robot: Robot, limit: float, search: tuple[int, int], x_half_span: float | None = None
+) -> KappaRegion:
+    """:func:`kappa_region_boundary` of a checked :class:`~.model.Robot` at a limit in
+    (0, 1], ``search`` = (columns >= 2, rows >= 3) (no checks)."""
+    arch, mode, value = robot.arch, robot.mode, limit
+    count, scans = search
     span, y_low, y_high = search_box(arch, value, x_half_span)
     if not span > 0:
         empty = np.full(count, np.nan)

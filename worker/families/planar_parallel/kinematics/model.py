@@ -45,6 +45,7 @@ __all__ = [
     "BoolArray",
     "ChainTerms",
     "FloatArray",
+    "Robot",
     "WorkingMode",
     "chain_components",
     "chain_terms",
@@ -101,6 +102,21 @@ class Architecture:
                 raise bad_parameter(name, "Architecture", "a finite positive length", value)
         if not (finite_real(self.e) and self.e >= 0):
             raise bad_parameter("e", "Architecture", "a finite non-negative distance", self.e)
+
+
+@dataclass(frozen=True)
+class Robot:
+    """One robot of Fig. 1 in one working mode: its :class:`Architecture` (which checked
+    its dimensions) and the working mode, checked here once. A job builds one and passes
+    it on; the functions taking a Robot trust it (no checks)."""
+
+    arch: Architecture
+    mode: WorkingMode
+
+    def __post_init__(self) -> None:
+        if not isinstance(self.arch, Architecture):
+            raise bad_parameter("arch", "Robot", "an Architecture", self.arch)
+        object.__setattr__(self, "mode", checked_mode(self.mode, "Robot"))
 
 
 def checked_mode(working_mode: object, function: str) -> WorkingMode:

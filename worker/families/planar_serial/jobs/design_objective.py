@@ -24,10 +24,8 @@ from typing import Literal
 import numpy as np
 from numpy.typing import NDArray
 
-from worker.families.planar_serial import kinematics as planar_serial
-from worker.families.planar_serial.kinematics.limited_exact import (
-    exact_limited_orientation_dexterity,
-)
+from worker.families.planar_serial.kinematics.limited_exact import events_dexterity
+from worker.families.planar_serial.kinematics.study_kernel import closed_form_dexterity
 
 __all__ = [
     "Design",
@@ -50,25 +48,28 @@ def dexterity_of_designs(
     links: FloatArray, bases: FloatArray, points: FloatArray, joint_limits_rad: FloatArray | None
 ) -> FloatArray:
     """Exact d_z (s, n) of s designs, links (s, 3) with bases (s, 2), at the task-frame
-    points (n, 2)."""
+    points (n, 2).  The search space's designs are trusted (within their validated
+    bounds): the kinematics do not check them again."""
     relative = points[np.newaxis, :, :] - bases[:, np.newaxis, :]
-    rows = links[:, np.newaxis, :]
+    rows = np.asarray(links[:, np.newaxis, :], dtype=np.float64)
     if joint_limits_rad is None:
-        d_z = planar_serial.exact_orientation_dexterity(rows, relative)
+        d_z = closed_form_dexterity(rows, relative)
     else:
-        d_z = exact_limited_orientation_dexterity(rows, relative, joint_limits_rad)
+        d_z = events_dexterity(rows, relative, joint_limits_rad)
     return np.asarray(d_z, dtype=float)
 
 
 def dexterity_at(
     links: Links, base: tuple[float, float], points: FloatArray, joint_limits_rad: FloatArray | None
 ) -> FloatArray:
-    """Exact d_z (...) of the arm with its base at ``base`` at task-frame points (..., 2)."""
-    relative = points - np.asarray(base)
+    """Exact d_z (...) of the arm with its base at ``base`` at task-frame points (..., 2)
+    (trusted links, as :func:`dexterity_of_designs`)."""
+    relative = np.asarray(points - np.asarray(base), dtype=np.float64)
+    lengths = np.asarray(links, dtype=np.float64)
     if joint_limits_rad is None:
-        d_z = planar_serial.exact_orientation_dexterity(links, relative)
+        d_z = closed_form_dexterity(lengths, relative)
     else:
-        d_z = exact_limited_orientation_dexterity(links, relative, joint_limits_rad)
+        d_z = events_dexterity(lengths, relative, joint_limits_rad)
     return np.asarray(d_z, dtype=float)
 
 

@@ -25,10 +25,17 @@ from worker.families.planar_serial.kinematics.limited_exact import (
     event_count,
     exact_limited_orientation_dexterity,
 )
+from worker.families.planar_serial.kinematics.study_kernel import (
+    FULL_DEXTERITY_TOL,
+    closed_form_dexterity,
+    designs_point_dexterity,
+)
 from worker.families.planar_serial.specs import GridSpec, JointLimitsDeg
 
 __all__ = [
     "FULL_DEXTERITY_TOL",
+    "RADIAL_ANGLE_DEG",
+    "RADIAL_SAMPLES",
     "REFINE_TOL_RAD",
     "LimitedJoints",
     "LimitedMethod",
@@ -39,6 +46,7 @@ __all__ = [
     "orientations",
     "point_dexterity",
     "point_method",
+    "radial_reach",
     "workspace_grid",
 ]
 
@@ -47,10 +55,12 @@ FloatArray = NDArray[np.float64]
 
 #: Bisection tolerance (rad) on the orientation transitions at task points.
 REFINE_TOL_RAD = 1e-10
-#: d_z within this of 1 counts as full dexterity.
-FULL_DEXTERITY_TOL = 1e-12
 #: Default half-width of the grid, as a multiple of the full reach l1 + l2 + l3.
 DEFAULT_GRID_MARGIN = 1.05
+#: Distances sampled along the radial section (the paper's Fig 7).
+RADIAL_SAMPLES = 2001
+#: Angle (deg) of the radial section's ray; d_z depends on it only under joint limits.
+RADIAL_ANGLE_DEG = 0.0
 #: Row blocks of the exact map (so that progress moves on large grids).
 EXACT_ROW_BLOCKS = 10
 
@@ -61,6 +71,11 @@ def workspace_grid(spec: GridSpec, links: Links) -> WorkspaceGrid:
         return WorkspaceGrid(spec.bounds, spec.points_per_axis)
     half = DEFAULT_GRID_MARGIN * math.fsum(links)
     return WorkspaceGrid((-half, half, -half, half), spec.points_per_axis)
+
+
+def radial_reach(links: Links) -> float:
+    """How far the radial section runs: 1.05 (l1 + l2 + l3), like the default grid."""
+    return DEFAULT_GRID_MARGIN * math.fsum(links)
 
 
 LimitedMethod = Literal["exact-events", "orientation-sampling"]
@@ -140,14 +155,19 @@ def grid_dexterity(
     limited: LimitedJoints | None,
     on_progress: Callable[[int, int], None],
 ) -> FloatArray:
-    """d_z at every node, (ny, nx); ``on_progress(done, total)`` after each chunk."""
+    """d_z at every node, (ny, nx); ``on_progress(done, total)`` after each chunk.
+
+    The links are the job's, validated (an :class:`~..kinematics.inputs.Arm`).  With
+    revolute joints the closed form takes them as a row of designs (1, 1, 3), as the
+    study kernel's tiles of maps do, so that both compute each node alike."""
     points = grid.points()
     if limited is None:
         ny = points.shape[0]
         d_z = np.empty(points.shape[:2])
+        row = np.asarray(links, dtype=np.float64).reshape(1, 1, 3)
         edges = np.linspace(0, ny, min(EXACT_ROW_BLOCKS, ny) + 1).astype(int)
         for start, stop in itertools.pairwise(edges.tolist()):
-            d_z[start:stop] = planar_serial.exact_orientation_dexterity(links, points[start:stop])
+            d_z[start:stop] = closed_form_dexterity(row, points[start:stop])
             on_progress(stop, ny)
         return d_z
     if not limited.sampled:
@@ -167,13 +187,17 @@ def grid_dexterity(
 
 
 def point_dexterity(links: Links, points: FloatArray, limited: LimitedJoints | None) -> FloatArray:
-    """d_z at ``points`` (n, 2) -> (n,): closed form, exact events, or sampled and refined."""
+    """d_z at ``points`` (n, 2) -> (n,): closed form, exact events, or sampled and refined.
+
+    The exact methods are the study kernel's own arithmetic with one design
+    (:func:`~..kinematics.study_kernel.designs_point_dexterity`), so a study reads the
+    numbers a job reports."""
     if points.shape[0] == 0:
         return np.zeros(0)
-    if limited is None:
-        return np.asarray(planar_serial.exact_orientation_dexterity(links, points), dtype=float)
-    if not limited.sampled:
-        return exact_limited_orientation_dexterity(links, points, limited.joint_limits_rad)
+    if limited is None or not limited.sampled:
+        limits = None if limited is None else limited.joint_limits_rad
+        rows = designs_point_dexterity(np.asarray([links], dtype=float), points, limits)
+        return np.asarray(rows[0], dtype=np.float64)
     return np.asarray(
         planar_serial.limited_orientation_dexterity(
             links,

@@ -22,7 +22,8 @@ from worker.families.planar_serial import kinematics as planar_serial
 from worker.families.planar_serial.errata import dexterity_map_errata_notes
 from worker.families.planar_serial.jobs.data_export import dexterity_map_files
 from worker.families.planar_serial.jobs.dexterity_evaluation import (
-    FULL_DEXTERITY_TOL,
+    RADIAL_ANGLE_DEG,
+    RADIAL_SAMPLES,
     LimitedJoints,
     Links,
     WorkspaceGrid,
@@ -32,6 +33,7 @@ from worker.families.planar_serial.jobs.dexterity_evaluation import (
     orientations,
     point_dexterity,
     point_method,
+    radial_reach,
     workspace_grid,
 )
 from worker.families.planar_serial.jobs.map_notes import (
@@ -39,6 +41,7 @@ from worker.families.planar_serial.jobs.map_notes import (
     map_warnings,
     unreachable_labels,
 )
+from worker.families.planar_serial.jobs.map_statistics import map_areas, map_summary
 from worker.families.planar_serial.jobs.regions import (
     LimitedRay,
     limited_ray_profile,
@@ -56,11 +59,6 @@ from worker.families.planar_serial.specs import DexterityMapSpec
 __all__ = ["RADIAL_SAMPLES", "run_dexterity_map"]
 
 FloatArray = NDArray[np.float64]
-
-#: Distances sampled along the radial section (the paper's Fig 7).
-RADIAL_SAMPLES = 2001
-#: Angle (deg) of the radial section's ray; d_z depends on it only under joint limits.
-RADIAL_ANGLE_DEG = 0.0
 
 
 def run_dexterity_map(spec: DexterityMapSpec, ctx: JobContext) -> JobOutcome:
@@ -88,7 +86,7 @@ def run_dexterity_map(spec: DexterityMapSpec, ctx: JobContext) -> JobOutcome:
         trajectory = trajectory_summary(point_dexterity(links, samples, sampling))
 
     progress.report(85.0, "radial section")
-    radial_d = np.linspace(0.0, _radial_reach(links), RADIAL_SAMPLES)
+    radial_d = np.linspace(0.0, radial_reach(links), RADIAL_SAMPLES)
     radial_dz = _radial_section(links, radial_d, sampling)
 
     progress.report(87.0, "regions along the ray")
@@ -109,11 +107,6 @@ def run_dexterity_map(spec: DexterityMapSpec, ctx: JobContext) -> JobOutcome:
     artifacts += dexterity_map_files(spec, grid, d_z, region)
     progress.report(100.0, "done")
     return JobOutcome(result=result, artifacts=artifacts, notes=tuple(notes), errata=tuple(errata))
-
-
-def _radial_reach(links: Links) -> float:
-    """How far the radial section runs: 1.05 (l1 + l2 + l3), like the default grid."""
-    return 1.05 * math.fsum(links)
 
 
 def _radial_section(
@@ -140,10 +133,9 @@ def _result(
 ) -> dict[str, Any]:
     links = spec.links
     bands = planar_serial.full_dexterity_bands(links) if ray is None else ray.bands
-    reachable = d_z > 0.0
-    full = d_z >= 1.0 - FULL_DEXTERITY_TOL
-    reachable_dz = d_z[reachable]
-    mean_reachable = float(reachable_dz.mean()) if reachable_dz.size else 0.0
+    areas = map_areas(links, grid, sampling, d_z)
+    if "unlimited_reference" in areas:
+        areas["unlimited_reference"]["regions"] = region_table(links)
     return {
         "links": list(links),
         "joint_limits_deg": _limits_list(spec),
@@ -156,60 +148,21 @@ def _result(
             "radial_section": {
                 "angle_deg": RADIAL_ANGLE_DEG,
                 "samples": RADIAL_SAMPLES,
-                "d_to": _radial_reach(links),
+                "d_to": radial_reach(links),
                 "method": map_method(sampling),
             },
         },
         "regions": region_table(links, ray),
         "full_dexterity_bands": [list(band) for band in bands],
-        "areas": _areas(links, grid, sampling, reachable, full),
+        "areas": areas,
         "summary": {
-            "d_z_max": float(d_z.max()),
-            "d_z_mean_reachable": mean_reachable,
-            "D_mean_reachable": mean_reachable / 3.0,
-            "reachable_points": int(reachable.sum()),
-            "fully_dexterous_points": int(full.sum()),
+            **map_summary(d_z),
             "unreachable_task_points": unreachable_labels(task_entries),
             "warnings": warnings,
         },
         "task_points": task_entries,
         "trajectory": trajectory,
         "data": {"csv": "dexterity_map.csv", "npz": "dexterity_map.npz"},
-    }
-
-
-def _areas(
-    links: Links,
-    grid: WorkspaceGrid,
-    sampling: LimitedJoints | None,
-    reachable: NDArray[np.bool_],
-    full: NDArray[np.bool_],
-) -> dict[str, Any]:
-    """Reachable and fully dexterous areas: exact for revolute joints; under joint limits
-    those of the limited arm, counted on the map, with the revolute ones as a reference."""
-    bands = planar_serial.full_dexterity_bands(links)
-    inner, outer = planar_serial.reach_radii(links)
-    unlimited = {
-        "reachable": math.pi * (outer**2 - inner**2),
-        "fully_dexterous": planar_serial.band_area(bands),
-    }
-    on_grid = {
-        "reachable_grid": int(reachable.sum()) * grid.cell_area,
-        "fully_dexterous_grid": int(full.sum()) * grid.cell_area,
-        "cell_area": grid.cell_area,
-    }
-    if sampling is None:
-        return {**unlimited, **on_grid, "method": "exact-closed-form"}
-    return {
-        "reachable": on_grid["reachable_grid"],
-        "fully_dexterous": on_grid["fully_dexterous_grid"],
-        **on_grid,
-        "method": f"grid count of {sampling.method} d_z (joint-limited arm)",
-        "unlimited_reference": {
-            **unlimited,
-            "full_dexterity_bands": [list(b) for b in bands],
-            "regions": region_table(links),
-        },
     }
 
 

@@ -50,6 +50,7 @@ from worker.families.planar_serial.jobs.trajectories import (
     trajectory_samples,
     trajectory_summary,
 )
+from worker.families.planar_serial.kinematics.inputs import Arm
 from worker.families.planar_serial.kinematics.trajectory import DistanceRange
 from worker.families.planar_serial.plots import figures as plots
 from worker.families.planar_serial.specs import SynthesisSpec
@@ -96,7 +97,7 @@ def run_synthesis(spec: SynthesisSpec, ctx: JobContext) -> JobOutcome:
 
     designs: list[tuple[int, Links, LimitedJoints | None, bool]] = [
         (1, links, None, False),
-        (2, (l1, l3, l2), None, False),
+        (2, Arm(l1, l3, l2), None, False),
     ]
     if spec.joint_limits_deg is not None:
         designs.append((3, links, sampling, True))

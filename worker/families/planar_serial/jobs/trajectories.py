@@ -7,8 +7,8 @@ from collections.abc import Sequence
 import numpy as np
 from numpy.typing import NDArray
 
-from worker.families.planar_serial.jobs.dexterity_evaluation import FULL_DEXTERITY_TOL
 from worker.families.planar_serial.kinematics import trajectory as kin_trajectory
+from worker.families.planar_serial.kinematics.study_kernel import trajectory_statistics
 from worker.families.planar_serial.kinematics.trajectory import DistanceRange
 from worker.families.planar_serial.specs import PolylineTrajectory, PolynomialTrajectory
 
@@ -84,12 +84,14 @@ def trajectory_path(spec: TrajectorySpec) -> FloatArray:
 
 
 def trajectory_summary(d_z: FloatArray) -> dict[str, float | int]:
-    """Eq (4) over the samples: mean d_z and D = d_z/3, the minimum, the full fraction."""
-    mean = float(np.mean(d_z))
+    """Eq (4) over the samples: mean d_z and D = d_z/3, the minimum, the full fraction
+    (the study kernel's :func:`~..kinematics.study_kernel.trajectory_statistics` of one
+    design)."""
+    stats = trajectory_statistics(d_z.reshape(1, -1))
     return {
         "samples": int(d_z.size),
-        "d_z_mean": mean,
-        "D_mean": mean / 3.0,
-        "d_z_min": float(np.min(d_z)),
-        "fully_dexterous_fraction": float(np.mean(d_z >= 1.0 - FULL_DEXTERITY_TOL)),
+        "d_z_mean": float(stats.d_z_mean[0]),
+        "D_mean": float(stats.D_mean[0]),
+        "d_z_min": float(stats.d_z_min[0]),
+        "fully_dexterous_fraction": float(stats.fully_dexterous_fraction[0]),
     }

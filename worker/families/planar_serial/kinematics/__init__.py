@@ -25,6 +25,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from worker.common.parameter_errors import bad_parameter
+from worker.families.planar_serial.kinematics.inputs import Arm as Arm
 from worker.families.planar_serial.kinematics.inputs import BoolArray as BoolArray
 from worker.families.planar_serial.kinematics.inputs import FloatArray as FloatArray
 from worker.families.planar_serial.kinematics.inputs import Links as Links
@@ -39,6 +40,7 @@ from worker.families.planar_serial.kinematics.joint_limits import (
     orientation_samples,
 )
 from worker.families.planar_serial.kinematics.reference_sampler import sampled_orientation_dexterity
+from worker.families.planar_serial.kinematics.study_kernel import closed_form_dexterity
 
 __all__ = [
     "band_area",
@@ -101,20 +103,7 @@ def exact_orientation_dexterity(links: ArrayLike, points: ArrayLike) -> FloatArr
     """
     lengths = checked_link_rows(links, "exact_orientation_dexterity")
     p = checked_points(points, "exact_orientation_dexterity")
-    l1, l2, l3 = lengths[..., 0], lengths[..., 1], lengths[..., 2]
-    # Scale-free form: lengths over the full reach, and clamping d at twice the reach
-    # (d_z = 0 there anyway) keep every intermediate O(1).
-    scale = l1 + l2 + l3
-    a, b, c = l1 / scale, l2 / scale, l3 / scale
-    d = np.minimum(np.hypot(p[..., 0], p[..., 1]) / scale, 2.0)
-    at_origin = np.where((np.abs(l1 - l2) <= l3) & (l3 <= l1 + l2), 1.0, 0.0)
-    safe_d = np.where(d > 0.0, d, 1.0)
-    with np.errstate(divide="ignore", over="ignore"):
-        c_lo = (d * d + c * c - (a + b) ** 2) / (2.0 * safe_d * c)
-        c_hi = (d * d + c * c - (a - b) ** 2) / (2.0 * safe_d * c)
-    arcs = np.arccos(np.clip(c_lo, -1.0, 1.0)) - np.arccos(np.clip(c_hi, -1.0, 1.0))
-    dz = np.clip(arcs / np.pi, 0.0, 1.0)
-    return np.asarray(np.where(d > 0.0, dz, at_origin), dtype=np.float64)
+    return closed_form_dexterity(lengths, p)
 
 
 def full_dexterity_bands(links: ArrayLike) -> tuple[tuple[float, float], ...]:
@@ -181,12 +170,12 @@ def paper_regions(links: ArrayLike, distances: ArrayLike) -> NDArray[np.int8]:
     return regions.astype(np.int8)
 
 
-def synthesise_links(d_min: float, d_max: float, l3: float) -> Links:
+def synthesise_links(d_min: float, d_max: float, l3: float) -> Arm:
     """Link lengths by eqs (10)-(11): l1 = (d_max + l3)/2 + 1, l2 = (d_max + l3)/2.
 
     The "+1" (in the task's length unit) makes |l1 - l2| = 1, so full dexterity at d_min
     needs l3 + 1 <= d_min, not only the paper's l3 < d_min (docs/methods/planar-serial.md); callers
-    check that. Returns (l1, l2, l3).
+    check that. Returns (l1, l2, l3) as an :class:`~.inputs.Arm` (checked once).
     """
     if not (math.isfinite(l3) and l3 > 0):
         raise bad_parameter("l3", "synthesise_links", "a finite positive length", l3)
@@ -197,4 +186,4 @@ def synthesise_links(d_min: float, d_max: float, l3: float) -> Links:
             "d_max", "synthesise_links", f"a finite distance >= d_min = {d_min}", d_max
         )
     half = (d_max + l3) / 2.0
-    return half + 1.0, half, float(l3)
+    return Arm(half + 1.0, half, float(l3))  # positive: checked once, here

@@ -1,8 +1,10 @@
 """Input normalisation of the three-link planar arm modules (once, at every public entry).
 
 Each check returns its argument as float64 data (a copy only if needed) or raises a
-ValueError naming the parameter, the function and what it must be.  The array aliases
-and :func:`~worker.common.arrays.checked_array` are every family's
+ValueError naming the parameter, the function and what it must be.  Links checked
+once travel as an :class:`Arm`, which every check trusts: a job builds one from its
+validated inputs and passes it down, so its kinematics never check the links again.
+The array aliases and :func:`~worker.common.arrays.checked_array` are every family's
 (:mod:`worker.common.arrays`), re-exported here for this family's modules.
 """
 
@@ -10,6 +12,7 @@ from __future__ import annotations
 
 import math
 import numbers
+from typing import NamedTuple
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -18,6 +21,7 @@ from worker.common.arrays import BoolArray, FloatArray, checked_array
 from worker.common.parameter_errors import bad_parameter
 
 __all__ = [
+    "Arm",
     "BoolArray",
     "FloatArray",
     "LinkLengths",
@@ -36,7 +40,25 @@ Links = tuple[float, float, float]
 LinkLengths = Links | tuple[FloatArray, FloatArray, FloatArray]
 
 
+class Arm(NamedTuple):
+    """Links (l1, l2, l3) checked once: finite and positive.  A tuple of three floats
+    (it goes wherever :data:`Links` does) that every check of this package trusts;
+    build it with :meth:`checked` (or, from inputs a validated model already checked,
+    directly)."""
+
+    l1: float
+    l2: float
+    l3: float
+
+    @classmethod
+    def checked(cls, links: ArrayLike, function: str = "Arm") -> Arm:
+        """The links checked (ValueError naming ``function`` if they are not)."""
+        return cls(*checked_links(links, function))
+
+
 def checked_links(links: ArrayLike, function: str) -> Links:
+    if isinstance(links, Arm):
+        return links
     arr = checked_array(
         links,
         "links",
@@ -49,6 +71,8 @@ def checked_links(links: ArrayLike, function: str) -> Links:
 
 def checked_link_rows(links: ArrayLike, function: str) -> FloatArray:
     """Designs ``(..., 3)``: one (l1, l2, l3) per leading index, or one design (3,)."""
+    if isinstance(links, Arm):
+        return np.asarray(links, dtype=np.float64)
     return checked_array(
         links,
         "links",

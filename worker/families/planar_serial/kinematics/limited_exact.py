@@ -49,6 +49,7 @@ from worker.families.planar_serial.kinematics.joint_limits import feasible_orien
 __all__ = [
     "event_conditions",
     "event_count",
+    "events_dexterity",
     "exact_limited_orientation_dexterity",
     "feasible_arcs",
     "orientation_events",
@@ -211,11 +212,25 @@ def exact_limited_orientation_dexterity(
     limits = checked_joint_limits(joint_limits, function)
     if not (isinstance(chunk_points, numbers.Integral) and chunk_points >= 1):
         raise bad_parameter("chunk_points", function, "a positive integer", chunk_points)
+    return events_dexterity(lengths, p, limits, int(chunk_points), on_chunk)
+
+
+def events_dexterity(
+    lengths: FloatArray,
+    p: FloatArray,
+    limits: FloatArray,
+    chunk_points: int = DEFAULT_CHUNK_POINTS,
+    on_chunk: Callable[[int, int], None] | None = None,
+) -> FloatArray:
+    """:func:`exact_limited_orientation_dexterity` of inputs already checked: designs
+    ``(3,)`` or ``(..., 3)`` finite and positive, points ``(..., 2)`` finite, limits
+    (3, 2) rad in [-pi, pi] with lo <= hi (the study kernel's tiles)."""
     shape = np.broadcast_shapes(lengths.shape[:-1], p.shape[:-1])
     flat = np.broadcast_to(p, (*shape, 2)).reshape(-1, 2)
     # one design: three numbers; designs: one row of links per point
     rows = None if lengths.ndim == 1 else np.broadcast_to(lengths, (*shape, 3)).reshape(-1, 3)
-    one_design = checked_links(lengths, function) if rows is None else None
+    # one design: three numbers (unused when there are rows)
+    single = (float(lengths.flat[0]), float(lengths.flat[1]), float(lengths.flat[2]))
     per_point = lengths if rows is None else rows
     outer = per_point.sum(axis=-1)
     inner = np.maximum(0.0, 2.0 * per_point.max(axis=-1) - outer)
@@ -230,9 +245,7 @@ def exact_limited_orientation_dexterity(
         chosen = candidates[lo:hi]
         if chosen.size:
             chosen_links: LinkLengths = (
-                one_design
-                if one_design is not None
-                else (rows[chosen, 0], rows[chosen, 1], rows[chosen, 2])
+                single if rows is None else (rows[chosen, 0], rows[chosen, 1], rows[chosen, 2])
             )
             measure = _chunk_measure(chosen_links, limits, flat[chosen])
             dz[chosen] = np.clip(measure / TWO_PI, 0.0, 1.0)
