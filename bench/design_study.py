@@ -33,7 +33,7 @@ from typing import Any
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
 from tests.integration.servers import deployment, wait_terminal
-from worker.processes import default_registry
+from worker.registry import default_registry
 from worker.studies.batched import evaluate_batched
 from worker.studies.engine import choose_engine
 from worker.studies.evaluation import evaluate_block

@@ -19,7 +19,7 @@ sys.path.insert(0, str(ROOT))
 from matplotlib.figure import Figure  # noqa: E402
 
 from worker.contract import Artifact  # noqa: E402
-from worker.processes import default_registry  # noqa: E402
+from worker.registry import default_registry  # noqa: E402
 
 FAMILIES = ("planar_serial", "planar_parallel", "chains", "spherical_parallel")
 DPI = 80

@@ -5,6 +5,7 @@ from __future__ import annotations
 import logging
 from collections.abc import AsyncIterator
 from contextlib import asynccontextmanager
+from functools import partial
 from typing import TYPE_CHECKING
 
 from fastapi import FastAPI
@@ -37,14 +38,15 @@ from service.routes import (
     processes,
 )
 from service.routes.process_operations import (
-    FAMILY_TAGS,
     execution_router,
     family_of,
     family_tag_documents,
+    family_tags,
 )
 from worker.dispatch import Dispatcher, make_dispatcher
 from worker.pool import WorkerPool
-from worker.processes import default_registry
+from worker.processes import ProcessRegistry
+from worker.registry import default_registry
 from worker.retention import RetentionSweeper
 from worker.store import open_store
 from worker.store.base import JobStore
@@ -76,6 +78,7 @@ def _start_sweeper(
 ) -> Sweeper | None:
     if not settings.broker_url:
         return None
+    # optional: Celery is loaded only with a broker
     from worker.dispatch.celery.dispatch import Sweeper
 
     sweeper = Sweeper(settings, store, dispatcher)
@@ -83,10 +86,11 @@ def _start_sweeper(
     return sweeper
 
 
-def create_app(settings: Settings) -> FastAPI:
+def create_app(settings: Settings, *, registry: ProcessRegistry | None = None) -> FastAPI:
     """Build the app from the settings tree its entry point built (it reads no
-    environment).  The store opens and the pool starts when the app starts."""
-    registry = default_registry()
+    environment), serving ``registry`` (by default every process dexlab ships).  The
+    store opens and the pool starts when the app starts."""
+    registry = default_registry() if registry is None else registry
 
     @asynccontextmanager
     async def lifespan(app: FastAPI) -> AsyncIterator[None]:
@@ -186,7 +190,9 @@ def create_app(settings: Settings) -> FastAPI:
     app.include_router(landing.router)
     app.include_router(ogc_router())  # OGC API - Processes at /ogc/, same store and jobs
     # Pages for people: HTML on the GET routes above, method pages, form actions.
-    app.state.pages = Pages(settings, family_tags=FAMILY_TAGS, family_of=family_of)
+    app.state.pages = Pages(
+        settings, family_tags=family_tags(registry), family_of=partial(family_of, registry)
+    )
     app.include_router(job_events.router)
     app.include_router(methods.router)
     app.include_router(page_actions.router)

@@ -22,6 +22,7 @@ def serve(options: dict[str, Any]) -> None:
     """``dexlab serve``: the HTTP API, with a local pool unless a broker is set."""
     import uvicorn
 
+    # cli: a command loads the app, the pool or Celery only when it runs
     from service.app import create_app
     from service.config import Settings
     from worker.logs import configure_logging
@@ -45,6 +46,7 @@ def serve(options: dict[str, Any]) -> None:
 
 def run_worker(options: dict[str, Any], log_level: str = "info") -> int:
     """``dexlab worker``: worker processes against a store; the exit status."""
+    # cli: a command loads the app, the pool or Celery only when it runs
     from service.config import Settings
     from worker.logs import configure_logging
     from worker.pool import WorkerPool
@@ -57,6 +59,7 @@ def run_worker(options: dict[str, Any], log_level: str = "info") -> int:
         sys.stderr.write("dexlab worker: --workers must be at least 1\n")
         return 2
     if settings.broker_url:
+        # cli: a command loads the app, the pool or Celery only when it runs
         from worker.dispatch.celery.worker import run_celery_worker
 
         run_celery_worker(settings, log_level.upper(), json_lines=log_format == "json")

@@ -98,6 +98,7 @@ class ServiceSettings(WorkerSettings):
     @field_validator("api_keys")
     @classmethod
     def _declared_keys(cls, value: SecretStr) -> SecretStr:
+        # lazy: keeps the settings, which every command line reads, free of the HTTP layer
         from service.auth.seeding import parse_api_keys
 
         parse_api_keys(value.get_secret_value())  # ValueError names the entry, not its secret
@@ -136,6 +137,7 @@ class ServiceSettings(WorkerSettings):
     @field_validator("forwarded_allow_ips")
     @classmethod
     def _trusted_proxies(cls, value: str) -> str:
+        # lazy: keeps the settings, which every command line reads, free of the HTTP layer
         from service.ogc.forwarded import parse_trusted
 
         parse_trusted(value)  # ValueError names a bad entry
@@ -144,6 +146,7 @@ class ServiceSettings(WorkerSettings):
     @field_validator("outbound_allow_hosts")
     @classmethod
     def _outbound_hosts(cls, value: str) -> str:
+        # lazy: keeps the settings, which every command line reads, free of the HTTP layer
         from service.ogc.outbound import OutboundPolicy
 
         OutboundPolicy.from_setting(value)  # ValueError names a bad entry

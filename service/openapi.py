@@ -23,7 +23,6 @@ from service.auth.public_routes import is_public
 from service.ogc.schemas import OGC_ROUTE_PROBLEMS, document_process_ids
 from service.openapi_streams import artifact_responses, event_stream_response
 from service.problems import PROBLEM_TYPES
-from service.routes.process_operations import FAMILY_PAPERS, family_of
 from service.schemas import RETENTION, ROUTE_DOCUMENTS, document_schemas
 from worker.processes import ProcessRegistry
 
@@ -162,7 +161,8 @@ def _process_bodies(
         if path is None or "post" not in path:
             continue
         taken: set[str] = set()
-        paper = FAMILY_PAPERS.get(family_of(definition))
+        family = registry.family(definition.id)
+        paper = family.paper if family is not None else None
         examples = {
             _example_key(ex.title, taken): {
                 "summary": f"{paper}: {ex.title}" if paper else ex.title,

@@ -4,7 +4,7 @@
 ``worker/families/<family>/`` (the science) -> ``worker/common/`` (what families share).
 ``worker/studies/`` (``design-study``) is a process built on the others: like a family
 it may use ``worker.common``, and it reaches the families only through the registry.
-The runtime reaches a family only through the registry (:func:`default_registry`); a
+The runtime reaches a family only through the registry (:mod:`worker.registry`); a
 family's ``kinematics/`` is pure numpy/scipy; families never import each other; figures
 never use pyplot; modules stay under 400 lines and a folder with three modules named
 ``<word>_*`` is a package waiting to happen.
@@ -96,9 +96,9 @@ def test_worker_never_imports_service(path: Path) -> None:
 
 @pytest.mark.parametrize("path", RUNTIME, ids=rel)
 def test_the_runtime_knows_no_family(path: Path) -> None:
-    """The runtime reaches families only through the registry in ``processes.py``."""
+    """The runtime reaches families only through the registry in ``registry.py``."""
     offenders = {m for m in imported_modules(path) if under(m, "worker.families", "worker.common")}
-    if path == ROOT / "worker/processes.py":
+    if path == ROOT / "worker/registry.py":
         offenders -= {"worker.families", *(f"worker.families.{f}" for f in FAMILIES)}
     assert not offenders, f"{path} imports family code: {offenders}"
 
@@ -113,7 +113,7 @@ def test_the_registry_lists_every_family_folder() -> None:
     """A new folder under ``worker/families/`` without its line in the registry fails."""
     listed = {
         name
-        for module, name in imports_of(ROOT / "worker/processes.py")
+        for module, name in imports_of(ROOT / "worker/registry.py")
         if module == "worker.families"
     }
     assert sorted(n for n in listed if n is not None) == FAMILIES
@@ -121,7 +121,7 @@ def test_the_registry_lists_every_family_folder() -> None:
 
 def test_loading_the_registry_loads_no_numerics_beyond_numpy() -> None:
     code = (
-        "import sys; from worker.processes import default_registry; default_registry(); "
+        "import sys; from worker.registry import worker_registry; worker_registry(); "
         "print(sorted(m for m in ('scipy', 'matplotlib') if m in sys.modules))"
     )
     out = subprocess.run(

@@ -22,7 +22,7 @@ from typing import Any
 from worker.dispatch.wake_ups import WakeUpListener, WakeUpSender, wake_up_dir
 from worker.liveness import LivenessBoard
 from worker.logs import LogFormat, configure_logging
-from worker.processes import worker_registry
+from worker.registry import worker_registry
 from worker.runner import WorkerLoop
 from worker.settings import WorkerSettings
 from worker.store import open_store

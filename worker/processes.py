@@ -1,8 +1,11 @@
-"""The process registry: every job kind the service offers, with its contract.
+"""What a process is: the contract between the families and the runtime.
 
 A process definition ties together the validated input model (pydantic, frozen,
 ``extra="forbid"``), the function that runs it, the paper's worked examples, a
 description of its outputs, and its cost limit (checked before anything is queued).
+A family says who it is with a :class:`FamilyInfo`; a :class:`ProcessRegistry` holds
+the definitions by ID and the family of each.  This module imports no family: the
+families import it, and :mod:`worker.registry` assembles them.
 """
 
 from __future__ import annotations
@@ -11,7 +14,7 @@ import copy
 from collections.abc import Callable, Iterable, Mapping, Sequence
 from dataclasses import dataclass
 from functools import cached_property
-from typing import Any
+from typing import Any, Protocol
 
 from pydantic import BaseModel
 
@@ -22,6 +25,8 @@ from worker.study_kernels import StudyKernel
 __all__ = [
     "ChildFiles",
     "ChildResults",
+    "FamilyInfo",
+    "FamilyPackage",
     "FanOutSteps",
     "PaperPoint",
     "ProcessDefinition",
@@ -31,9 +36,7 @@ __all__ = [
     "ResultPathInfo",
     "StudyKernel",
     "data_files",
-    "default_registry",
     "figure_files",
-    "worker_registry",
 ]
 
 #: File extension -> media type of the files jobs write.
@@ -215,13 +218,53 @@ class ProcessDefinition:
         }
 
 
-class ProcessRegistry:
-    """Process definitions by ID, in the order they were registered."""
+@dataclass(frozen=True)
+class FamilyInfo:
+    """What a family of processes says of itself, for the API documents and the pages.
 
-    def __init__(self, definitions: tuple[ProcessDefinition, ...]) -> None:
-        self._by_id = {d.id: d for d in definitions}
-        if len(self._by_id) != len(definitions):
+    ``name`` is its package under ``worker/families/`` (``"chains"``; the pages' anchor
+    ``family-chains``); ``tag`` its title, the OpenAPI tag its execute operations are
+    listed under and the heading of its processes on the pages; ``description`` the
+    tag's description; ``paper`` the paper it reproduces, as the worked examples'
+    summaries cite it (``"Bai 2010"``)."""
+
+    name: str
+    tag: str
+    description: str
+    paper: str
+
+
+class FamilyPackage(Protocol):
+    """A family's package as the registry reads it: who it is and its processes, in
+    the order ``GET /v1/processes`` lists them."""
+
+    @property
+    def FAMILY(self) -> FamilyInfo: ...
+
+    @property
+    def PROCESSES(self) -> tuple[ProcessDefinition, ...]: ...
+
+
+class ProcessRegistry:
+    """Process definitions by ID, in the order they were registered, and the family of
+    each: the processes of ``families`` first, then ``definitions``, processes of no
+    family (``design-study``)."""
+
+    def __init__(
+        self,
+        definitions: Iterable[ProcessDefinition] = (),
+        *,
+        families: Iterable[FamilyPackage] = (),
+    ) -> None:
+        packages = tuple(families)
+        self._families = tuple(p.FAMILY for p in packages)
+        self._family_of = {d.id: p.FAMILY for p in packages for d in p.PROCESSES}
+        listed = (*(d for p in packages for d in p.PROCESSES), *definitions)
+        self._by_id = {d.id: d for d in listed}
+        if len(self._by_id) != len(listed):
             raise ValueError("process IDs must be unique")
+        if len({f.name for f in self._families}) != len(self._families):
+            raise ValueError("family names must be unique")
 
     def __iter__(self):  # type: ignore[no-untyped-def]
         return iter(self._by_id.values())
@@ -235,53 +278,10 @@ class ProcessRegistry:
     def ids(self) -> list[str]:
         return list(self._by_id)
 
+    def families(self) -> tuple[FamilyInfo, ...]:
+        """The families, in the order their processes are listed."""
+        return self._families
 
-def default_registry() -> ProcessRegistry:
-    """Every process dexlab ships, built on demand (no import-time work).
-
-    The families, in the order ``GET /v1/processes`` lists their processes: a new family
-    is a folder under ``worker/families/`` and one entry here (the architecture test
-    checks that every folder is listed).
-    """
-    from worker.families import chains, planar_parallel, planar_serial, spherical_parallel
-    from worker.studies.process import STUDY
-
-    families = (planar_serial, planar_parallel, chains, spherical_parallel)
-    return ProcessRegistry((*(d for family in families for d in family.PROCESSES), STUDY))
-
-
-def worker_registry() -> ProcessRegistry:
-    """What the workers run: every public process and the jobs processes make for
-    themselves (a study's chunks), which the service neither lists nor accepts."""
-    from worker.studies.chunk import CHUNK
-
-    return ProcessRegistry((*default_registry(), CHUNK))
-
-
-def preload_job_modules() -> list[str]:
-    """Import every module a job imports when it runs (each family's ``jobs`` package
-    with its figures, hence matplotlib; the design studies); the names, in order.
-
-    Processes import their jobs' modules on first use, so the API stays light.  A
-    prefork worker (``dexlab worker`` on Celery) calls this before it forks, so that each
-    pool process, and each one started in place of a process that stopped, has them
-    already (shared copy-on-write) instead of its first job paying the imports (about
-    0.3 s for ``fourbar-grashof``, longer than a thousand such jobs take to run)."""
-    import importlib
-    import pkgutil
-
-    import worker.families as families
-    import worker.studies as studies
-
-    worker_registry()  # the families' own modules (specs, costs, examples)
-    packages = [
-        f"{m.name}.jobs" for m in pkgutil.iter_modules(families.__path__, "worker.families.")
-    ]
-    names: list[str] = []
-    for package in (*packages, studies.__name__):
-        module = importlib.import_module(package)
-        names.append(package)
-        names += [m.name for m in pkgutil.iter_modules(module.__path__, f"{package}.")]
-    for name in names:
-        importlib.import_module(name)
-    return names
+    def family(self, process_id: str) -> FamilyInfo | None:
+        """The family of a process; None for a process of no family (``design-study``)."""
+        return self._family_of.get(process_id)

@@ -43,6 +43,7 @@ def _open(data_dir: Path | None, store_url: str | None, create: bool = False) ->
         raise click.UsageError("give --data-dir or --store-url, not both")
     from pydantic import ValidationError
 
+    # cli: the client's command line loads the store only for `dexlab keys`
     from service.config import Settings
     from worker.errors import DexlabError
     from worker.store import open_store
@@ -68,6 +69,7 @@ def _one_line(exc: BaseException) -> str:
 
 
 def _check_name(name: str) -> str:
+    # cli: the client's command line loads the store only for `dexlab keys`
     from worker.store.api_keys import check_key_name
 
     try:
@@ -93,6 +95,7 @@ def keys() -> None:
 @_store_options
 def create(name: str, admin: bool, data_dir: Path | None, store_url: str | None) -> None:
     """Make the key NAME; its secret is printed once, on the last line."""
+    # cli: the client's command line loads the store only for `dexlab keys`
     from worker.errors import DexlabError
     from worker.store.api_keys import hash_secret, new_secret
 
@@ -125,6 +128,7 @@ def list_keys(data_dir: Path | None, store_url: str | None) -> None:
     from rich.console import Console
     from rich.table import Table
 
+    # cli: the client's command line loads the store only for `dexlab keys`
     from worker.errors import DexlabError
 
     store = _open(data_dir, store_url)
@@ -154,6 +158,7 @@ def list_keys(data_dir: Path | None, store_url: str | None) -> None:
 @_store_options
 def revoke(name: str, data_dir: Path | None, store_url: str | None) -> None:
     """Revoke the key NAME: it and its browser sessions stop working within a second."""
+    # cli: the client's command line loads the store only for `dexlab keys`
     from worker.errors import DexlabError
 
     store = _open(data_dir, store_url)

@@ -71,6 +71,7 @@ def serve(**options: Any) -> None:
     """Run the HTTP API with a local worker pool (or the API alone with a broker)."""
     from pydantic import ValidationError
 
+    # cli: `dexlab serve` and `dexlab worker` load the service only when they run
     from service.cli import serve as run_server
 
     try:
@@ -85,6 +86,7 @@ def worker(log_level: str | None, **options: Any) -> None:
     """Run worker processes alone against a store (a Celery worker with a broker)."""
     from pydantic import ValidationError
 
+    # cli: `dexlab serve` and `dexlab worker` load the service only when they run
     from service.cli import run_worker
 
     try:

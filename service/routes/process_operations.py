@@ -19,65 +19,40 @@ from service.routes.processes import ExecuteRequest, execute
 from worker.processes import ProcessDefinition, ProcessRegistry
 
 __all__ = [
-    "FAMILY_PAPERS",
-    "FAMILY_TAGS",
     "execution_router",
     "family_of",
     "family_tag",
     "family_tag_documents",
+    "family_tags",
 ]
 
-#: The paper each family reproduces, as example summaries name it.
-FAMILY_PAPERS: dict[str, str] = {
-    "planar_serial": "Patel & Sobh 2012",
-    "planar_parallel": "Huang et al. 2004",
-    "spherical_parallel": "Bai 2010",
-    "chains": "the parallelism paper",
-}
 
-#: The job families, by their package under ``worker/families``: (tag, description).
-FAMILY_TAGS: dict[str, tuple[str, str]] = {
-    "planar_serial": (
-        "Three-link planar serial arms",
-        "Patel & Sobh: synthesis from task points or a trajectory, dexterity maps, joint limits.",
-    ),
-    "planar_parallel": (
-        "2-DOF planar parallel robots",
-        "Huang et al. 2004: conditioning and pressure-angle maps, the workspace bounded "
-        "by a conditioning limit, the largest rectangle, η, the optimum.",
-    ),
-    "spherical_parallel": (
-        "Spherical parallel manipulators",
-        "Bai 2010: kinematics, conditioning over an orientation workspace, the design "
-        "space and the optimum design.",
-    ),
-    "chains": (
-        "Kinematic chains",
-        "Parallelism measures P and Q; Grashof classification of four-bars.",
-    ),
-}
+def family_of(registry: ProcessRegistry, definition: ProcessDefinition) -> str:
+    """The name of the family a process belongs to (its package under
+    ``worker/families``, as the registry says), or "other"."""
+    family = registry.family(definition.id)
+    return family.name if family is not None else "other"
 
 
-def family_of(definition: ProcessDefinition) -> str:
-    """The family package a process belongs to (``worker.families.<family>``), read off
-    its ``run`` function's module (the service imports no family)."""
-    parts = definition.run.__module__.split(".")
-    return parts[2] if len(parts) > 2 and parts[:2] == ["worker", "families"] else "other"
+def family_tags(registry: ProcessRegistry) -> dict[str, tuple[str, str]]:
+    """The families by name: (tag, description), in the registry's order."""
+    return {f.name: (f.tag, f.description) for f in registry.families()}
 
 
 def family_tag_documents(registry: ProcessRegistry) -> list[dict[str, Any]]:
     """The OpenAPI tags of the families, each linking its method page (Markdown)."""
     tags = []
-    for family, (tag, text) in FAMILY_TAGS.items():
-        docs = {d.method_doc for d in registry if family_of(d) == family and d.method_doc}
+    for family in registry.families():
+        docs = {d.method_doc for d in registry if registry.family(d.id) == family and d.method_doc}
         links = " ".join(f"[The method: equations, errata](/methods/{doc})." for doc in docs)
-        tags.append({"name": tag, "description": f"{text} {links}".strip()})
+        tags.append({"name": family.tag, "description": f"{family.description} {links}".strip()})
     return tags
 
 
-def family_tag(definition: ProcessDefinition) -> str:
-    family = family_of(definition)
-    return FAMILY_TAGS[family][0] if family in FAMILY_TAGS else "processes"
+def family_tag(registry: ProcessRegistry, definition: ProcessDefinition) -> str:
+    """The OpenAPI tag a process's execute operation is listed under."""
+    family = registry.family(definition.id)
+    return family.tag if family is not None else "processes"
 
 
 def operation_id(process_id: str) -> str:
@@ -115,7 +90,7 @@ def execution_router(registry: ProcessRegistry) -> APIRouter:
             _bound(definition.id),
             methods=["POST"],
             status_code=201,
-            tags=[family_tag(definition)],
+            tags=[family_tag(registry, definition)],
             summary=f"Run {definition.id}: {definition.title}",
             description=(
                 f"{definition.description}\n\nQueues a job (201 with `Location`); with "

@@ -18,7 +18,9 @@ import pytest
 from service.routes.process_operations import family_tag, operation_id
 from tests.browser import chromium, open_page, screenshot_dir
 from tests.integration.servers import Deployment, deployment
-from worker.processes import default_registry
+from worker.registry import default_registry
+
+REGISTRY = default_registry()
 
 pytestmark = pytest.mark.integration
 
@@ -64,7 +66,7 @@ def test_swagger_ui_lists_every_process_offline(api: Deployment, browser: Any, s
         assert tags == [t["name"] for t in document["tags"] if t["name"] in tags]
         for definition in default_registry():
             section = page.locator(".opblock-tag-section").filter(
-                has=page.locator(f'h3.opblock-tag[data-tag="{family_tag(definition)}"]')
+                has=page.locator(f'h3.opblock-tag[data-tag="{family_tag(REGISTRY, definition)}"]')
             )
             path = section.locator(
                 f'.opblock-summary-path[data-path="/v1/processes/{definition.id}/execution"]'
@@ -91,7 +93,7 @@ def test_try_it_out_starts_from_the_first_worked_example(
     examples, and "Try it out" fills the body with the first."""
     definition = next(d for d in default_registry() if len(d.examples) > 1)
     described = api.client.get(f"/v1/processes/{definition.id}").json()["examples"]
-    tag = family_tag(definition)
+    tag = family_tag(REGISTRY, definition)
     with open_page(browser) as offline:
         page = offline.page
         page.goto(f"{api.base_url}/docs#/{quote(tag)}/{operation_id(definition.id)}")
@@ -122,7 +124,7 @@ def test_redoc_renders_offline_with_local_fonts(api: Deployment, browser: Any, s
         assert page.inner_text("h1").startswith("dexlab")
         menu = page.locator("[role=menu]").first.inner_text()
         for definition in default_registry():
-            assert family_tag(definition) in menu, definition.id
+            assert family_tag(REGISTRY, definition) in menu, definition.id
             summary = page.get_by_text(f"Run {definition.id}: {definition.title}", exact=True)
             assert summary.count() >= 1, definition.id
         page.evaluate("() => document.fonts.ready.then(() => true)")

@@ -18,7 +18,7 @@ import pytest
 from tests.integration.servers import deployment, wait_for, wait_terminal
 from tests.integration.test_server import pid_of, wait_dead
 from tests.unit.families.conftest import RecordingContext
-from worker.processes import default_registry
+from worker.registry import default_registry
 from worker.studies.evaluation import design_inputs
 from worker.studies.spec import StudySpec
 

@@ -11,7 +11,7 @@ import httpx
 import pytest
 
 from tests.integration.servers import Deployment, deployment, wait_for, wait_terminal
-from worker.processes import default_registry
+from worker.registry import default_registry
 
 pytestmark = pytest.mark.integration
 

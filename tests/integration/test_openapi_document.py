@@ -23,7 +23,9 @@ from referencing.jsonschema import DRAFT202012
 from service.routes.process_operations import family_tag
 from tests.integration.servers import Deployment, deployment
 from tests.integration.test_families import EXAMPLES as FAMILY_SUITE_EXAMPLES
-from worker.processes import default_registry
+from worker.registry import default_registry
+
+REGISTRY = default_registry()
 
 pytestmark = pytest.mark.integration
 
@@ -81,8 +83,8 @@ def test_each_process_has_its_operation_under_its_family_tag(document: dict[str,
     tags = [t["name"] for t in document["tags"]]
     for definition in PROCESSES:
         operation = execute_operation(document, definition.id)
-        assert operation["tags"] == [family_tag(definition)], definition.id
-        assert family_tag(definition) in tags
+        assert operation["tags"] == [family_tag(REGISTRY, definition)], definition.id
+        assert family_tag(REGISTRY, definition) in tags
 
 
 def test_examples_are_those_the_families_suite_runs(

@@ -11,7 +11,7 @@ import httpx
 import pytest
 
 from tests.integration.test_api_asgi import poll
-from worker.processes import default_registry
+from worker.registry import default_registry
 
 pytestmark = [pytest.mark.integration, pytest.mark.anyio]
 

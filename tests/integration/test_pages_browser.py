@@ -17,7 +17,7 @@ import pytest
 
 from tests.browser import LOCAL_HOSTS, chromium, open_page, screenshot_dir
 from tests.integration.servers import Deployment, deployment
-from worker.processes import default_registry
+from worker.registry import default_registry
 
 pytestmark = pytest.mark.integration
 

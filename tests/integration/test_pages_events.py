@@ -16,7 +16,7 @@ import pytest
 
 from service.app import create_app
 from service.config import Settings
-from worker.processes import default_registry
+from worker.registry import default_registry
 
 pytestmark = [pytest.mark.integration, pytest.mark.anyio]
 

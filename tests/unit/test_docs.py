@@ -11,7 +11,7 @@ from typing import NamedTuple
 import pytest
 from latex2mathml.converter import convert
 
-from worker.processes import default_registry
+from worker.registry import default_registry
 
 ROOT = Path(__file__).resolve().parents[2]
 DOCS = ROOT / "docs"

@@ -55,6 +55,7 @@ def make_dispatcher(settings: WorkerSettings, store: JobStore) -> Dispatcher:
     """The dispatcher the settings call for."""
     if not settings.broker_url:
         return LocalDispatch(WakeUpSender(wake_up_dir(settings.resolved_store_url())))
+    # optional: Celery is loaded only with a broker
     from worker.dispatch.celery.dispatch import CeleryDispatch
 
     return CeleryDispatch(settings, store)

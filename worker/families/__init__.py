@@ -1,3 +1,3 @@
 """The science: one package per mechanism family (its processes, kinematics, jobs
-and plots).  The registry lists the families (:func:`worker.processes.default_registry`);
+and plots).  The registry lists the families (:func:`worker.registry.family_packages`);
 this package imports none of them."""

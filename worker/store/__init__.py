@@ -15,6 +15,7 @@ from worker.store.base import (
     StoredArtifact,
     WorkerInfo,
 )
+from worker.store.sqlite import SqliteJobStore
 
 __all__ = [
     "CallbackClaim",
@@ -37,10 +38,9 @@ def open_store(url: str, retry_s: float = 5.0) -> JobStore:
     created or migrated.  Each call retries transient faults for ``retry_s`` seconds."""
     store: JobStore
     if url.startswith("sqlite:///"):
-        from worker.store.sqlite import SqliteJobStore
-
         store = SqliteJobStore.from_url(url, retry_s=retry_s)
     elif url.startswith(("postgresql://", "postgres://", "postgresql+psycopg://")):
+        # optional: PostgreSQL (psycopg) is loaded only for a postgresql:// store
         from worker.store.postgres import PostgresJobStore
 
         store = PostgresJobStore(

@@ -17,14 +17,15 @@ from collections.abc import Callable, Sequence
 import numpy as np
 from numpy.typing import NDArray
 
+from worker.input_validation import field_path
 from worker.processes import ProcessDefinition
 from worker.result_paths import declared_steps
 from worker.studies.engine import EngineChoice
+from worker.studies.files import objective_entry
 from worker.studies.paths import ResultPath, parse_result_path
 from worker.studies.rows import FEASIBLE, NO_VALUE, REFUSED, ChunkRows, ReasonTally
 from worker.studies.spec import StudySpec
 from worker.study_kernels import KernelBlock
-from worker.submission import field_path
 
 __all__ = ["BATCH", "evaluate_batched", "objective_column"]
 
@@ -93,7 +94,6 @@ def evaluate_batched(
     on_design: Callable[[int, int], None] | None = None,
 ) -> ChunkRows:
     """Rows of the designs ``start`` to ``stop`` (exclusive), through the kernel."""
-    from worker.studies.files import objective_entry
 
     assert choice.plan is not None
     names = list(spec.objectives)

@@ -17,7 +17,8 @@ import time
 from typing import Any
 
 from worker.processes import ProcessDefinition
-from worker.studies.engine import EngineChoice
+from worker.studies.engine import EngineChoice, choose_engine
+from worker.studies.evaluation import evaluate_block
 from worker.studies.spec import MAX_CHUNK, StudySpec
 
 __all__ = ["CHUNK_SECONDS", "MIN_CHUNKS", "chunk_inputs", "chunk_size", "design_seconds"]
@@ -37,8 +38,6 @@ def design_seconds(choice: EngineChoice) -> float:
 
 
 def _timed_seconds(spec: StudySpec, process: ProcessDefinition) -> float:
-    from worker.studies.evaluation import evaluate_block
-
     seconds = math.inf
     for _ in range(2):  # the first run may pay for imports and caches: the faster counts
         start = time.perf_counter()
@@ -60,13 +59,9 @@ def chunk_size(spec: StudySpec, process: ProcessDefinition, choice: EngineChoice
     return max(1, min(size, math.ceil(count / MIN_CHUNKS), MAX_CHUNK))
 
 
-def chunk_inputs(spec: StudySpec) -> list[dict[str, Any]]:
-    """The chunks' inputs: the study, each block of designs in order, and the engine."""
-    from worker.processes import default_registry
-    from worker.studies.engine import choose_engine
-
-    process = default_registry().get(spec.process)
-    assert process is not None  # the study's validator checked it
+def chunk_inputs(spec: StudySpec, process: ProcessDefinition) -> list[dict[str, Any]]:
+    """The chunks' inputs: the study of ``process``, each block of designs in order,
+    and the engine."""
     choice = choose_engine(spec, process)
     size = chunk_size(spec, process, choice)
     study = spec.model_dump(mode="json")

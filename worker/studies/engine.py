@@ -19,8 +19,10 @@ from pydantic import ValidationError
 
 from worker.errors import InvalidInputs
 from worker.input_schema import schema_errors
+from worker.input_validation import field_errors
 from worker.processes import ProcessDefinition
 from worker.result_paths import declared_steps
+from worker.studies.files import objective_entry
 from worker.studies.paths import InputPath, parse_input_path, with_input
 from worker.studies.spec import StudySpec
 from worker.study_kernels import STUDY_TEMPLATE, KernelPlan, KernelRequest, StudyKernel
@@ -72,7 +74,6 @@ def _reference(kernel: StudyKernel, path: InputPath) -> float | None:
 def _template(process: ProcessDefinition, spec: StudySpec, references: Sequence[float]) -> Any:
     """The process's inputs validated from ``fixed`` with the reference values at the
     varied paths, in the template's context; InvalidInputs if it refuses them."""
-    from worker.submission import field_errors
 
     raw: dict[str, Any] = dict(spec.fixed)
     for name, value in zip(spec.designs.names, references, strict=True):
@@ -91,7 +92,6 @@ def _template(process: ProcessDefinition, spec: StudySpec, references: Sequence[
 
 def choose_engine(spec: StudySpec, process: ProcessDefinition) -> EngineChoice:
     """The engine of ``spec`` over ``process`` (see the module doc)."""
-    from worker.studies.files import objective_entry
 
     if spec.engine == "per-design":
         return EngineChoice("per-design", "the study asks for the per-design engine")

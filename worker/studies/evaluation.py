@@ -19,11 +19,11 @@ from typing import Any
 import numpy as np
 
 from worker.errors import InvalidInputs
+from worker.input_validation import validate_inputs
 from worker.processes import ProcessDefinition
 from worker.studies.paths import parse_input_path, parse_result_path, read_result, with_input
 from worker.studies.rows import FAILED, FEASIBLE, NO_VALUE, REFUSED, ChunkRows, ReasonTally
 from worker.studies.spec import StudySpec
-from worker.submission import validate_inputs
 
 __all__ = ["DesignRow", "SilentContext", "chunk_rows", "design_inputs", "evaluate_block"]
 

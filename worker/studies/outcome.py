@@ -11,6 +11,7 @@ from worker.contract import Artifact, JobContext, JobOutcome
 from worker.processes import ChildFiles, ChildResults, ProcessDefinition
 from worker.studies.assembly import StudyTable, collect, entry, pareto_rows, summary
 from worker.studies.designs import GridSpace
+from worker.studies.engine import choose_engine
 from worker.studies.figures import (
     Marker,
     code,
@@ -33,13 +34,13 @@ __all__ = ["study_outcome"]
 
 
 def study_outcome(
-    spec: StudySpec, children: ChildResults, files: ChildFiles, ctx: JobContext
+    spec: StudySpec,
+    process: ProcessDefinition,
+    children: ChildResults,
+    files: ChildFiles,
+    ctx: JobContext,
 ) -> JobOutcome:
-    from worker.processes import default_registry
-    from worker.studies.engine import choose_engine
-
-    process = default_registry().get(spec.process)
-    assert process is not None
+    """The study of ``process`` assembled from its chunks' results and files."""
     ctx.report_progress(90.0, "assembling the chunks")
     counted: list[int] = []
 

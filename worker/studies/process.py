@@ -9,54 +9,60 @@ into chunks of about a second of work (:mod:`.chunking`) and queues them as
 while they run, and the chunk that ends last queues the assembly (:mod:`.assembly`,
 :mod:`.files`, :mod:`.figures`), which reads the chunks' rows one chunk at a time.
 ``run`` does the same in one process (tests, small studies).
+
+A study runs the processes of the registry it is built with (:func:`design_study`): it
+never builds one.
 """
 
 from __future__ import annotations
 
 import math
-from collections.abc import Mapping
-from typing import Any
+from collections.abc import Callable, Mapping
+from functools import partial
+from typing import Any, TypeVar
 
 from worker.contract import ChildEnd, JobContext, JobOutcome, JobStatus
+from worker.errors import InvalidInputs
+from worker.input_validation import validate_inputs
 from worker.processes import (
     ChildFiles,
     ChildResults,
     FanOutSteps,
     ProcessDefinition,
     ProcessFile,
+    ProcessRegistry,
     figure_files,
 )
+from worker.result_paths import declared_steps
+from worker.studies.chunk import ChunkSpec, run_chunk, target_of
 from worker.studies.chunking import chunk_inputs
-from worker.studies.evaluation import SilentContext
+from worker.studies.engine import EngineChoice, choose_engine
+from worker.studies.evaluation import SilentContext, design_inputs
 from worker.studies.examples import STUDY_EXAMPLES
+from worker.studies.files import objective_entry
+from worker.studies.number_inputs import unvariable_paths
+from worker.studies.paths import (
+    nearest_place,
+    parse_input_path,
+    parse_result_path,
+    reported,
+    show_input_path,
+)
 from worker.studies.result_paths import STUDY_RESULT_PATHS
-from worker.studies.spec import StudySpec
+from worker.studies.spec import StudySpec, study_spec_for
 
-__all__ = ["STUDY", "chunk_inputs", "study_cost"]
+__all__ = ["design_study", "dry_check", "study_cost"]
 
 #: A study may cost as much as this many jobs of its process at their cost limit.
 STUDY_JOBS_LIMIT = 1000
 _MILLIONTHS = 1_000_000
+Answer = TypeVar("Answer")
 
 
-def _target(spec: StudySpec) -> ProcessDefinition:
-    from worker.processes import default_registry
-
-    process = default_registry().get(spec.process)
-    assert process is not None  # the study's validator checked it
-    return process
-
-
-def study_cost(spec: StudySpec) -> int:
-    """Designs x a design's cost, in millionths of the process's cost limit: the
-    kernel's cost of a design when the study is batched, else the first design's cost
-    as a job of the process."""
-    from worker.errors import InvalidInputs
-    from worker.studies.engine import choose_engine
-    from worker.studies.evaluation import design_inputs
-    from worker.submission import validate_inputs
-
-    process = _target(spec)
+def study_cost(spec: StudySpec, process: ProcessDefinition) -> int:
+    """Designs x a design's cost, in millionths of the cost limit of ``process`` (the
+    process studied): the kernel's cost of a design when the study is batched, else the
+    first design's cost as a job of the process."""
     choice = choose_engine(spec, process)
     if choice.plan is not None:
         share = min(1.0, choice.plan.cost / process.cost_limit)
@@ -79,28 +85,21 @@ def _probe_indices(count: int, most: int = 9) -> list[int]:
     return list(dict.fromkeys([0, count // 2, *spread]))
 
 
-def dry_check(spec: StudySpec) -> list[dict[str, Any]]:
-    """At submission: varied paths the process takes no number at and objectives that
-    are no number it declares (:attr:`ProcessDefinition.result_paths`), then a design
-    run once, so that fixed inputs the process refuses whatever the varied values, and
-    objective paths it does not report, are a 422 before anything is queued.  The
-    varied paths are checked against the process's published input schema; then the
-    first design is tried, and others spread over the space until one validates: a
-    design refused for its varied values is no error (other designs may be fine), but
-    fixed inputs every tried design is refused for are, each at its place in
-    ``fixed``.  A refusal is for a varied value when it is at the varied place, inside
-    it or at a place holding it.  A design too costly to run during a request (above
-    the process's sync limit and a thousandth of its cost limit) is not run.  A
-    batched study asks its kernel instead of running the process, and a study asking
-    for ``"engine": "batched"`` that cannot be is refused at ``inputs.engine``."""
-    from worker.errors import InvalidInputs
-    from worker.studies.engine import choose_engine
-    from worker.studies.evaluation import design_inputs
-    from worker.studies.number_inputs import unvariable_paths
-    from worker.studies.paths import parse_result_path, reported
-    from worker.submission import validate_inputs
-
-    process = _target(spec)
+def dry_check(spec: StudySpec, process: ProcessDefinition) -> list[dict[str, Any]]:
+    """At submission, for the study of ``process``: varied paths the process takes no
+    number at and objectives that are no number it declares
+    (:attr:`ProcessDefinition.result_paths`), then a design run once, so that fixed
+    inputs the process refuses whatever the varied values, and objective paths it does
+    not report, are a 422 before anything is queued. The varied paths are checked
+    against the process's published input schema; then the first design is tried, and
+    others spread over the space until one validates: a design refused for its varied
+    values is no error (other designs may be fine), but fixed inputs every tried design
+    is refused for are, each at its place in ``fixed``. A refusal is for a varied value
+    when it is at the varied place, inside it or at a place holding it. A design too
+    costly to run during a request (above the process's sync limit and a thousandth of
+    its cost limit) is not run. A batched study asks its kernel instead of running the
+    process, and a study asking for ``"engine": "batched"`` that cannot be is refused at
+    ``inputs.engine``."""
     undeclared = [
         *unvariable_paths(spec, process.inputs_schema),
         *_undeclared_objectives(spec, process),
@@ -151,15 +150,12 @@ def dry_check(spec: StudySpec) -> list[dict[str, Any]]:
 
 
 def _unreported_by_kernel(
-    spec: StudySpec, process: ProcessDefinition, choice: Any
+    spec: StudySpec, process: ProcessDefinition, choice: EngineChoice
 ) -> list[dict[str, Any]]:
     """A batched study's objectives checked on its kernel's answer for the first design:
     an index past the end of a list the kernel reports (``chains[7].P`` of five chains)
     is a path the process does not report."""
-    from worker.result_paths import declared_steps
-    from worker.studies.files import objective_entry
-    from worker.studies.paths import parse_result_path
-
+    assert choice.plan is not None
     block = choice.plan.evaluate(spec.designs.block(0, 1))
     problems = []
     for name in spec.objectives:
@@ -179,8 +175,6 @@ def _unreported_by_kernel(
 def _undeclared_objectives(spec: StudySpec, process: ProcessDefinition) -> list[dict[str, Any]]:
     """An objective must read numbers the process declares (so that every study knows
     their unit): one field error per objective that does not."""
-    from worker.studies.files import objective_entry
-
     return [
         {"field": f"inputs.objectives.{name}", "type": "value_error",
          "message": f"{spec.process} reports no number at this path (its result_paths, in "
@@ -194,8 +188,6 @@ def _in_fixed(fixed: Mapping[str, Any], error: Mapping[str, Any], tried: str) ->
     """A process's refusal of the fixed inputs as the study's field error: at the place
     in ``fixed`` nearest to what the process names (``inputs.grid.points`` ->
     ``inputs.fixed.grid.points``), the process's own field in the message if it differs."""
-    from worker.studies.paths import nearest_place, parse_input_path, show_input_path
-
     named = error["field"].removeprefix("inputs").removeprefix(".")
     try:
         path = parse_input_path(named)
@@ -224,98 +216,115 @@ def _related(field: str, varied: str) -> bool:
 
 
 def assemble(
-    spec: StudySpec, children: ChildResults, files: ChildFiles, ctx: JobContext
+    studied: ProcessRegistry,
+    spec: StudySpec,
+    children: ChildResults,
+    files: ChildFiles,
+    ctx: JobContext,
 ) -> JobOutcome:
+    """The study's outcome from its chunks (the figures need matplotlib)."""
+    # lazy: keeps the registry free of matplotlib (the study's figures)
     from worker.studies.outcome import study_outcome
 
-    return study_outcome(spec, children, files, ctx)
+    return study_outcome(spec, target_of(studied, spec), children, files, ctx)
 
 
-def run_in_process(spec: StudySpec, ctx: JobContext) -> JobOutcome:
+def run_in_process(studied: ProcessRegistry, spec: StudySpec, ctx: JobContext) -> JobOutcome:
     """The whole study in this process: each chunk run here, then assembled."""
-    from worker.studies.chunk import ChunkSpec, run_chunk
-
-    chunks = chunk_inputs(spec)
+    chunks = chunk_inputs(spec, target_of(studied, spec))
     stored: dict[tuple[str, str], bytes] = {}
 
     def children() -> ChildResults:
         for n, inputs in enumerate(chunks):
-            outcome = run_chunk(ChunkSpec.model_validate(inputs), SilentContext())
+            outcome = run_chunk(studied, ChunkSpec.model_validate(inputs), SilentContext())
             ctx.report_progress(90.0 * (n + 1) / len(chunks), f"chunk {n + 1} of {len(chunks)}")
             stored.clear()  # one chunk's files at a time, as the store streams them
             for artifact in outcome.artifacts:
                 stored[(f"chunk-{n}", artifact.name)] = artifact.data
             yield ChildEnd(f"chunk-{n}", JobStatus.SUCCESSFUL, None), outcome.result
 
-    return assemble(spec, children(), lambda job_id, name: stored.get((job_id, name)), ctx)
+    def files(job_id: str, name: str) -> bytes | None:
+        return stored.get((job_id, name))
+
+    return assemble(studied, spec, children(), files, ctx)
 
 
-STUDY = ProcessDefinition(
-    id="design-study",
-    # 1.1.0: objectives' units in designs.csv and designs.npz (objective_units,
-    # objective_symbols) and on the plots; the first varied input on x.
-    # 2.0.0: the batched engine ('engine', 'engine_reason'); reason codes per design
-    # (designs.npz reason_code/reason_field instead of a reason string per design, a
-    # reason_code column in designs.csv), infeasible_reasons by code, field and message.
-    version="2.0.0",
-    result_paths=STUDY_RESULT_PATHS,
-    title="Design study: one process over many designs, with the Pareto front",
-    description=(
-        "Evaluates any single-design process ('process', its other inputs in 'fixed') over "
-        "a grid ('vary': input path -> [lo, hi, n]) or a Sobol / Latin-hypercube sample "
-        "('sample') of designs, and reports every design's objectives (result paths -> "
-        "'max' or 'min', a list reduced with |min, |max, |mean or |sum), the non-dominated "
-        "designs and the best per objective. The designs are split into chunk jobs of about "
-        "a second each that run on every worker at once; a design the process refuses, or "
-        "that has no value for an objective, is kept as infeasible with its reason code. "
-        "Where the process has a study kernel covering every objective and varied input "
-        '(its result_paths say "kernel": true), the designs are evaluated many at once '
-        "(engine 'batched', the same numbers); else by running the process per design. "
-        "Cost: designs x a design's cost (the kernel's, or the first design's as a job), in "
-        f"millionths of the process's cost limit; at most {STUDY_JOBS_LIMIT} jobs' worth."
-    ),
-    inputs_model=StudySpec,
-    files=(
-        ProcessFile("designs.csv", "Every design: parameters and objectives (CSV)"),
-        ProcessFile("designs.npz", "Every design (NumPy arrays)"),
-        *figure_files("objective_maps", "Each objective over the varied inputs"),
-        *figure_files("pareto", "The objectives and the non-dominated designs"),
-    ),
-    method_doc="design-studies",
-    run=run_in_process,
-    examples=STUDY_EXAMPLES,
-    outputs={
-        "process": "The process evaluated.",
-        "engine": "'batched' (the process's study kernel) or 'per-design' (the whole process "
-        "once per design).",
-        "engine_reason": "Why the study ran per design ('' when batched).",
-        "count": "Designs in the study.",
-        "evaluated": "Designs evaluated (count minus those of missing chunks).",
-        "feasible": "Designs with a value for every objective.",
-        "missing": "Designs of chunks that failed (allow_partial).",
-        "missing_chunks": "The chunk jobs that failed.",
-        "infeasible": "Infeasible designs per reason code: refused, no-value, failed.",
-        "infeasible_reasons": "Why designs are infeasible, most frequent first: reason_code, "
-        "reason_field (the field a refusal names), reason (each distinct message once) and "
-        "designs.",
-        "parameters": "The varied input paths, in column order.",
-        "objectives": "The objectives (result path -> 'max' or 'min').",
-        "pareto_size": "How many designs are non-dominated.",
-        "pareto": "The non-dominated designs (at most 1000 listed): index, parameters, objectives.",
-        "best": "Per objective, the best designs (best_count).",
-        "paper_points": "The designs the process's paper reports that the study contains "
-        "(marked on the plots), each with the study's design there if it evaluated it.",
-        "chunks": "How many chunks ran.",
-    },
-    cost=study_cost,
-    precheck=dry_check,
-    cost_limit=STUDY_JOBS_LIMIT * _MILLIONTHS,
-    cost_unit="designs x their cost in millionths of the process's cost limit",
-    time_limit_s=1800.0,
-    fan_out=FanOutSteps(
-        child_process="design-study-chunk",
-        split=chunk_inputs,
-        assemble=assemble,
-        allow_partial=lambda spec: bool(spec.allow_partial),
-    ),
-)
+def _on_target(
+    check: Callable[[StudySpec, ProcessDefinition], Answer], studied: ProcessRegistry
+) -> Callable[[StudySpec], Answer]:
+    """``check(spec, process)`` as a function of the study's inputs alone."""
+    return lambda spec: check(spec, target_of(studied, spec))
+
+
+def design_study(studied: ProcessRegistry) -> ProcessDefinition:
+    """``design-study`` over the single-design processes of ``studied``."""
+    return ProcessDefinition(
+        id="design-study",
+        # 1.1.0: objectives' units in designs.csv and designs.npz (objective_units,
+        # objective_symbols) and on the plots; the first varied input on x.
+        # 2.0.0: the batched engine ('engine', 'engine_reason'); reason codes per design
+        # (designs.npz reason_code/reason_field instead of a reason string per design, a
+        # reason_code column in designs.csv), infeasible_reasons by code, field and message.
+        version="2.0.0",
+        result_paths=STUDY_RESULT_PATHS,
+        title="Design study: one process over many designs, with the Pareto front",
+        description=(
+            "Evaluates any single-design process ('process', its other inputs in 'fixed') over "
+            "a grid ('vary': input path -> [lo, hi, n]) or a Sobol / Latin-hypercube sample "
+            "('sample') of designs, and reports every design's objectives (result paths -> "
+            "'max' or 'min', a list reduced with |min, |max, |mean or |sum), the non-dominated "
+            "designs and the best per objective. The designs are split into chunk jobs of about "
+            "a second each that run on every worker at once; a design the process refuses, or "
+            "that has no value for an objective, is kept as infeasible with its reason code. "
+            "Where the process has a study kernel covering every objective and varied input "
+            '(its result_paths say "kernel": true), the designs are evaluated many at once '
+            "(engine 'batched', the same numbers); else by running the process per design. "
+            "Cost: designs x a design's cost (the kernel's, or the first design's as a job), in "
+            f"millionths of the process's cost limit; at most {STUDY_JOBS_LIMIT} jobs' worth."
+        ),
+        inputs_model=study_spec_for(studied.ids()),
+        files=(
+            ProcessFile("designs.csv", "Every design: parameters and objectives (CSV)"),
+            ProcessFile("designs.npz", "Every design (NumPy arrays)"),
+            *figure_files("objective_maps", "Each objective over the varied inputs"),
+            *figure_files("pareto", "The objectives and the non-dominated designs"),
+        ),
+        method_doc="design-studies",
+        run=partial(run_in_process, studied),
+        examples=STUDY_EXAMPLES,
+        outputs={
+            "process": "The process evaluated.",
+            "engine": "'batched' (the process's study kernel) or 'per-design' (the whole process "
+            "once per design).",
+            "engine_reason": "Why the study ran per design ('' when batched).",
+            "count": "Designs in the study.",
+            "evaluated": "Designs evaluated (count minus those of missing chunks).",
+            "feasible": "Designs with a value for every objective.",
+            "missing": "Designs of chunks that failed (allow_partial).",
+            "missing_chunks": "The chunk jobs that failed.",
+            "infeasible": "Infeasible designs per reason code: refused, no-value, failed.",
+            "infeasible_reasons": "Why designs are infeasible, most frequent first: reason_code, "
+            "reason_field (the field a refusal names), reason (each distinct message once) and "
+            "designs.",
+            "parameters": "The varied input paths, in column order.",
+            "objectives": "The objectives (result path -> 'max' or 'min').",
+            "pareto_size": "How many designs are non-dominated.",
+            "pareto": "The non-dominated designs (at most 1000 listed): index, parameters, "
+            "objectives.",
+            "best": "Per objective, the best designs (best_count).",
+            "paper_points": "The designs the process's paper reports that the study contains "
+            "(marked on the plots), each with the study's design there if it evaluated it.",
+            "chunks": "How many chunks ran.",
+        },
+        cost=_on_target(study_cost, studied),
+        precheck=_on_target(dry_check, studied),
+        cost_limit=STUDY_JOBS_LIMIT * _MILLIONTHS,
+        cost_unit="designs x their cost in millionths of the process's cost limit",
+        time_limit_s=1800.0,
+        fan_out=FanOutSteps(
+            child_process="design-study-chunk",
+            split=_on_target(chunk_inputs, studied),
+            assemble=partial(assemble, studied),
+            allow_partial=lambda spec: bool(spec.allow_partial),
+        ),
+    )

@@ -1,6 +1,7 @@
 """Validated inputs of ``design-study``: which process, over which designs, judged how.
 
-``process`` is any registered single-design process; ``fixed`` holds its other inputs
+``process`` is any single-design process of the registry the study belongs to (the
+model :func:`study_spec_for` makes for it checks that); ``fixed`` holds its other inputs
 exactly as it takes them; ``vary`` (a grid, ``{"path": [lo, hi, n]}``) or ``sample``
 (Sobol or Latin hypercube over ``bounds``) says which inputs change; ``objectives``
 maps result paths (:mod:`.paths`) to ``"max"`` or ``"min"``.  Checks that need the
@@ -17,10 +18,17 @@ inputs can be built.
 from __future__ import annotations
 
 import math
-from collections.abc import Mapping
+from collections.abc import Iterable, Mapping
 from typing import Annotated, Any, Literal
 
-from pydantic import BeforeValidator, Field, JsonValue, field_validator, model_validator
+from pydantic import (
+    BeforeValidator,
+    Field,
+    JsonValue,
+    create_model,
+    field_validator,
+    model_validator,
+)
 
 from worker.common.field_errors import field_error
 from worker.common.specs import FrozenSpec
@@ -32,7 +40,7 @@ from worker.studies.paths import (
     varied_input_problem,
 )
 
-__all__ = ["MAX_DESIGNS", "MAX_OBJECTIVES", "SampleSpec", "StudySpec"]
+__all__ = ["MAX_DESIGNS", "MAX_OBJECTIVES", "SampleSpec", "StudySpec", "study_spec_for"]
 
 #: Most designs one study may hold (the cost model may refuse fewer).
 MAX_DESIGNS = 1_000_000
@@ -123,6 +131,9 @@ class SampleSpec(FrozenSpec):
 class StudySpec(FrozenSpec):
     """Inputs of ``design-study``."""
 
+    # ``process`` is checked by the model study_spec_for makes for a registry (the
+    # docstring above is the published schema's description).
+
     process: str = Field(..., description="The process evaluated for every design.")
     fixed: dict[str, JsonValue] = Field(
         default_factory=dict,
@@ -164,18 +175,6 @@ class StudySpec(FrozenSpec):
     )
     best_count: int = Field(5, ge=1, le=100, description="Best designs listed per objective.")
     plots: bool = Field(True, description="Render the study's plots (PNG/SVG).")
-
-    @field_validator("process")
-    @classmethod
-    def _known(cls, process: str) -> str:
-        from worker.processes import default_registry
-
-        ids = [pid for pid in default_registry().ids() if pid not in NOT_STUDIED]
-        if process not in ids:
-            raise ValueError(
-                f"{process!r} is not a process a study can run; one of {', '.join(ids)}"
-            )
-        return process
 
     @field_validator("vary")
     @classmethod
@@ -224,3 +223,24 @@ class StudySpec(FrozenSpec):
         assert self.sample is not None
         bounds = tuple((name, lo, hi) for name, (lo, hi) in self.sample.bounds.items())
         return SampleSpace(self.sample.method, bounds, self.sample.count, self.sample.seed)
+
+
+def study_spec_for(process_ids: Iterable[str]) -> type[StudySpec]:
+    """The inputs model of a study of one of ``process_ids`` (its registry's: the study's
+    own processes are left out), named ``StudySpec`` like the model it extends."""
+    ids = [pid for pid in process_ids if pid not in NOT_STUDIED]
+
+    def known(cls: type[StudySpec], process: str) -> str:
+        if process not in ids:
+            raise ValueError(
+                f"{process!r} is not a process a study can run; one of {', '.join(ids)}"
+            )
+        return process
+
+    return create_model(
+        "StudySpec",
+        __base__=StudySpec,
+        __module__=__name__,
+        __doc__=StudySpec.__doc__,
+        __validators__={"_known": field_validator("process")(classmethod(known))},  # type: ignore[dict-item]
+    )

@@ -11,7 +11,7 @@ from dexlab.cli.render import print_results, result_rows
 from dexlab.quantities import ResultPaths, display_unit, plain_symbol
 from tests.unit.families.conftest import RecordingContext
 from worker import result_paths as declared
-from worker.processes import default_registry
+from worker.registry import default_registry
 
 REGISTRY = default_registry()
 

@@ -17,7 +17,7 @@ import pytest
 
 from tests.unit.families.conftest import RecordingContext
 from worker.contract import JobOutcome
-from worker.processes import default_registry
+from worker.registry import default_registry
 
 #: Small inputs of every process that writes data files (plots off: only the files).
 SMALL: dict[str, dict[str, Any]] = {

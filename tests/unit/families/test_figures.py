@@ -18,7 +18,8 @@ from tests.figure_check import figure_defects
 from tests.unit.families.conftest import RecordingContext
 from tests.unit.families.test_data_files import SMALL
 from worker.contract import Artifact
-from worker.processes import ProcessDefinition, default_registry
+from worker.processes import ProcessDefinition
+from worker.registry import default_registry
 
 FAMILIES = ("planar_serial", "planar_parallel", "chains", "spherical_parallel")
 DEFINITIONS = list(default_registry())

@@ -15,7 +15,7 @@ import pytest
 
 from worker.contract import JobStatus
 from worker.families.planar_serial.examples import EXAMPLE_2_LABELS, EXAMPLE_2_TASK_POINTS
-from worker.processes import default_registry
+from worker.registry import default_registry
 from worker.runner import WorkerLoop
 from worker.settings import WorkerSettings
 from worker.store import open_store

@@ -1,7 +1,7 @@
 """What every family owes the runtime, checked over the registry (as scikit-learn's
-``test_common`` checks every estimator): a family lists its processes in
-``PROCESSES`` and exports nothing else; every process has a unique ID, a method page,
-declared files, worked examples that validate and fit the cost limit, and a
+``test_common`` checks every estimator): a family lists its processes in ``PROCESSES``,
+says who it is in ``FAMILY`` and exports nothing else; every process has a unique ID, a
+method page, declared files, worked examples that validate and fit the cost limit, and a
 description that serialises; ``run`` is a lazy shim of the family's package."""
 
 from __future__ import annotations
@@ -12,7 +12,8 @@ from pathlib import Path
 
 import pytest
 
-from worker.processes import ProcessDefinition, default_registry
+from worker.processes import ProcessDefinition
+from worker.registry import default_registry
 
 ROOT = Path(__file__).resolve().parents[3]
 FAMILIES = sorted(p.parent.name for p in (ROOT / "worker/families").glob("*/__init__.py"))
@@ -24,8 +25,9 @@ def test_a_family_exports_its_processes_and_nothing_else(family: str) -> None:
     package = importlib.import_module(f"worker.families.{family}")
     assert package.PROCESSES, family
     names = set(package.__all__)
-    assert "PROCESSES" in names
-    exported = sorted(getattr(package, n).id for n in names - {"PROCESSES"})
+    assert {"PROCESSES", "FAMILY"} <= names
+    assert package.FAMILY.name == family
+    exported = sorted(getattr(package, n).id for n in names - {"PROCESSES", "FAMILY"})
     assert exported == sorted(d.id for d in package.PROCESSES), family
     for definition in package.PROCESSES:
         assert definition.run.__module__ == f"worker.families.{family}", definition.id

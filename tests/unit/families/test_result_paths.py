@@ -19,7 +19,8 @@ import pytest
 from matplotlib.mathtext import MathTextParser
 
 from tests.unit.families.conftest import RecordingContext
-from worker.processes import ProcessDefinition, default_registry
+from worker.processes import ProcessDefinition
+from worker.registry import default_registry
 from worker.result_paths import (
     RESULT_UNITS,
     ResultPathTable,

@@ -15,7 +15,7 @@ import pytest
 
 from service.ogc.callbacks import CallbackSender
 from service.ogc.outbound import OutboundPolicy
-from worker.processes import default_registry
+from worker.registry import default_registry
 from worker.store import open_store
 from worker.store.base import JobStore, NewJob
 

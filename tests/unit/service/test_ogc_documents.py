@@ -14,7 +14,8 @@ from service.ogc.schemas import OgcJobList, OgcProcess, OgcProcessSummary, OgcSt
 from service.ogc.urls import PublicUrls
 from service.ogc.vocabulary import REL_EXCEPTIONS, REL_EXECUTE, REL_PROCESSES, REL_RESULTS
 from worker.contract import JobRecord, JobStatus
-from worker.processes import ProcessDefinition, default_registry
+from worker.processes import ProcessDefinition
+from worker.registry import default_registry
 
 URLS = PublicUrls("https://dexlab.example.org/kin")
 DEFINITIONS = list(default_registry())

@@ -22,7 +22,7 @@ from service.ogc.outputs import process_outputs
 from service.preferences import MAX_WAIT_S
 from worker.contract import JobStatus
 from worker.errors import InvalidInputs
-from worker.processes import default_registry
+from worker.registry import default_registry
 
 
 @pytest.mark.parametrize(

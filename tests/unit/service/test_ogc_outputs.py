@@ -8,7 +8,7 @@ from typing import Any
 import pytest
 
 from service.ogc.outputs import process_outputs
-from worker.processes import default_registry
+from worker.registry import default_registry
 from worker.submission import validate_inputs
 
 pytestmark = pytest.mark.slow

@@ -17,7 +17,7 @@ from service.pages.method_docs import MethodDocs, default_docs_dir
 from service.pages.negotiation import prefers_html, wants_html
 from service.pages.result_view import ResultNode, format_scalar, result_view
 from service.pages.views import compact_json
-from worker.processes import default_registry
+from worker.registry import default_registry
 
 BROWSER = "text/html,application/xhtml+xml,application/xml;q=0.9,image/avif,*/*;q=0.8"
 

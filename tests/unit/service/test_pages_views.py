@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 from datetime import UTC, datetime
+from functools import partial
 from pathlib import Path
 from typing import Any
 
@@ -11,16 +12,21 @@ from starlette.requests import Request
 
 from service.pages import Pages, PageSettings
 from service.pages.views import job_page
-from service.routes.process_operations import FAMILY_TAGS, family_of
+from service.routes.process_operations import family_of, family_tags
 from worker.contract import ArtifactInfo, JobRecord, JobStatus
-from worker.processes import default_registry
+from worker.registry import default_registry
 
 NOW = datetime(2026, 1, 2, 3, 4, 5, 678000, tzinfo=UTC)
 
 
 @pytest.fixture
 def pages(tmp_path: Path) -> Pages:
-    return Pages(PageSettings(docs_dir=tmp_path), family_tags=FAMILY_TAGS, family_of=family_of)
+    registry = default_registry()
+    return Pages(
+        PageSettings(docs_dir=tmp_path),
+        family_tags=family_tags(registry),
+        family_of=partial(family_of, registry),
+    )
 
 
 def page_of(pages: Pages, job: JobRecord, result: dict[str, Any] | None = None) -> str:

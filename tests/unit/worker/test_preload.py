@@ -10,7 +10,7 @@ import sys
 
 SCRIPT = """
 import json, sys
-from worker.processes import preload_job_modules, worker_registry
+from worker.registry import preload_job_modules, worker_registry
 
 names = preload_job_modules() if sys.argv[1] == "preload" else []
 before = set(sys.modules)

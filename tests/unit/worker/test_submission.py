@@ -11,7 +11,8 @@ from pydantic import BaseModel, ConfigDict, Field
 
 from worker.contract import JobContext, JobOutcome
 from worker.errors import CostLimitExceeded, InvalidInputs, NoSuchProcess, QueueFull, QuotaExceeded
-from worker.processes import ProcessDefinition, ProcessRegistry, default_registry
+from worker.processes import ProcessDefinition, ProcessRegistry
+from worker.registry import default_registry
 from worker.settings import WorkerSettings
 from worker.store import open_store
 from worker.submission import request_hash, submit, validate_inputs

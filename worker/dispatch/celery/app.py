@@ -49,6 +49,7 @@ def create_celery_app(settings: WorkerSettings) -> Celery:
     # makes one app for the worker and one for sending).
     @app.task(name=RUN_JOB, bind=True, max_retries=None, shared=False)  # type: ignore[untyped-decorator]
     def run_job(self: Task, job_id: str) -> None:
+        # optional: the task runs in a Celery worker only, whose module imports this one
         from worker.dispatch.celery.worker import run_delivered_job
 
         retry_after = run_delivered_job(self.app, job_id)

@@ -17,6 +17,7 @@ from typing import Any
 
 from worker.dispatch import Dispatcher
 from worker.dispatch.celery.app import RUN_JOB, create_celery_app
+from worker.registry import default_registry
 from worker.settings import WorkerSettings
 from worker.store.base import JobStore
 
@@ -107,8 +108,6 @@ class CeleryDispatch:
 
 def longest_time_limit(settings: WorkerSettings) -> float:
     """The longest time limit any job of the registered processes gets (seconds)."""
-    from worker.processes import default_registry
-
     return max((settings.time_limit_for(d.time_limit_s) for d in default_registry()),
                default=0.0)  # fmt: skip
 

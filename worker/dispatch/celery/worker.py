@@ -69,7 +69,7 @@ from worker.errors import StoreUnavailable
 from worker.liveness import LivenessBoard, Watchdog, frozen_after_s
 from worker.logs import log_context, stdout_as_log_lines
 from worker.pool_process import lower_priority
-from worker.processes import preload_job_modules, worker_registry
+from worker.registry import preload_job_modules, worker_registry
 from worker.retention import RetentionSweeper
 from worker.runner import WorkerLoop, worker_id_for
 from worker.settings import WorkerSettings

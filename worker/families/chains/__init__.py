@@ -33,18 +33,20 @@ from worker.families.chains.specs import (
     ChainParallelismSpec,
 )
 from worker.families.chains.study import CHAIN_PARALLELISM_KERNEL, FOURBAR_GRASHOF_KERNEL
-from worker.processes import ProcessDefinition, figure_files
+from worker.processes import FamilyInfo, ProcessDefinition, figure_files
 
-__all__ = ["CHAIN_PARALLELISM", "FOURBAR_GRASHOF", "PROCESSES"]
+__all__ = ["CHAIN_PARALLELISM", "FAMILY", "FOURBAR_GRASHOF", "PROCESSES"]
 
 
 def _run_chain_parallelism(spec: ChainParallelismSpec, ctx: JobContext) -> JobOutcome:
+    # lazy: the job module (matplotlib, scipy) loads when a job runs, not with the registry
     from worker.families.chains.jobs.parallelism import run_chain_parallelism
 
     return run_chain_parallelism(spec, ctx)
 
 
 def _run_fourbar_grashof(spec: FourBarGrashofSpec, ctx: JobContext) -> JobOutcome:
+    # lazy: the job module (matplotlib, scipy) loads when a job runs, not with the registry
     from worker.families.chains.jobs.fourbar import run_fourbar_grashof
 
     return run_fourbar_grashof(spec, ctx)
@@ -140,6 +142,14 @@ FOURBAR_GRASHOF = ProcessDefinition(
     cost_unit="four-bar chains",
     sync_cost_limit=FOURBAR_SYNC_COST_LIMIT,
     time_limit_s=TIME_LIMIT_S,
+)
+
+#: Who this family is: the tag its operations are listed under, and its paper.
+FAMILY = FamilyInfo(
+    name="chains",
+    tag="Kinematic chains",
+    description=("Parallelism measures P and Q; Grashof classification of four-bars."),
+    paper="the parallelism paper",
 )
 
 #: This family's processes, in the order GET /v1/processes lists them.

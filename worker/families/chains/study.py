@@ -17,6 +17,8 @@ the spread, then the loop).  The numbers are the jobs' to the bit
 
 from __future__ import annotations
 
+from worker.families.chains.study_chains import ChainsPlan
+from worker.families.chains.study_fourbar import FourBarPlan
 from worker.study_kernels import KernelPlan, KernelRequest, StudyKernel
 
 __all__ = ["CHAIN_PARALLELISM_KERNEL", "FOURBAR_GRASHOF_KERNEL"]
@@ -31,22 +33,15 @@ FOURBAR_COVERS = (
 #: Seconds per unit of chain-parallelism's cost (a link x loop) for one design, batched
 #: (Fig 2's five quadrangles, 20 units: about 11 µs a design on the 2-core test machine).
 CHAIN_SECONDS_PER_COST = 5e-7
-#: A batched four-bar's price in the process's cost unit (one four-bar, a job's whole
-#: cost, which pays for its figure: about 0.1 s): about 4 µs of work, so a thousandth is
-#: generous; and the seconds per unit of that price.
-FOURBAR_KERNEL_COST = 1e-3
+#: Seconds per unit of a batched four-bar's price (``FOURBAR_KERNEL_COST``).
 FOURBAR_SECONDS_PER_COST = 4e-3
 
 
 def _prepare_chains(request: KernelRequest) -> KernelPlan:
-    from worker.families.chains.study_chains import ChainsPlan
-
     return ChainsPlan.of(request)
 
 
 def _prepare_fourbar(request: KernelRequest) -> KernelPlan:
-    from worker.families.chains.study_fourbar import FourBarPlan
-
     return FourBarPlan.of(request)
 
 

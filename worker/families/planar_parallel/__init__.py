@@ -35,18 +35,20 @@ from worker.families.planar_parallel.result_paths import (
 )
 from worker.families.planar_parallel.specs import ConditioningMapSpec, OptimisationSpec
 from worker.families.planar_parallel.study import CONDITIONING_MAP_KERNEL
-from worker.processes import ProcessDefinition, ProcessFile, data_files, figure_files
+from worker.processes import FamilyInfo, ProcessDefinition, ProcessFile, data_files, figure_files
 
-__all__ = ["CONDITIONING_MAP", "OPTIMISATION", "PROCESSES"]
+__all__ = ["CONDITIONING_MAP", "FAMILY", "OPTIMISATION", "PROCESSES"]
 
 
 def _run_conditioning_map(spec: ConditioningMapSpec, ctx: JobContext) -> JobOutcome:
+    # lazy: the job module (matplotlib, scipy) loads when a job runs, not with the registry
     from worker.families.planar_parallel.jobs.conditioning_map import run_conditioning_map
 
     return run_conditioning_map(spec, ctx)
 
 
 def _run_optimisation(spec: OptimisationSpec, ctx: JobContext) -> JobOutcome:
+    # lazy: the job module (matplotlib, scipy) loads when a job runs, not with the registry
     from worker.families.planar_parallel.jobs.optimisation import run_optimisation
 
     return run_optimisation(spec, ctx)
@@ -174,6 +176,17 @@ OPTIMISATION = ProcessDefinition(
     cost_limit=OPTIMISATION_COST_LIMIT,
     cost_unit=COST_UNIT,
     time_limit_s=OPTIMISATION_TIME_LIMIT_S,
+)
+
+#: Who this family is: the tag its operations are listed under, and its paper.
+FAMILY = FamilyInfo(
+    name="planar_parallel",
+    tag="2-DOF planar parallel robots",
+    description=(
+        "Huang et al. 2004: conditioning and pressure-angle maps, the workspace bounded "
+        "by a conditioning limit, the largest rectangle, η, the optimum."
+    ),
+    paper="Huang et al. 2004",
 )
 
 #: This family's processes, in the order GET /v1/processes lists them.

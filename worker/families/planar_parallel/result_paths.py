@@ -7,7 +7,23 @@ from __future__ import annotations
 from worker.result_paths import ResultPathInfo as R
 from worker.result_paths import prefixed
 
-__all__ = ["CONDITIONING_MAP_RESULT_PATHS", "OPTIMISATION_RESULT_PATHS"]
+__all__ = [
+    "CONDITIONING_MAP_RESULT_PATHS",
+    "GRID_PATHS",
+    "OPTIMISATION_RESULT_PATHS",
+    "REGION_PATHS",
+]
+
+#: The conditioning map's paths its study kernel (:mod:`.study`) reads from the designs'
+#: grids, and from W_kappa0's column search.
+GRID_PATHS = (
+    "summary.reachable_points", "summary.reachable_area_grid", "summary.inverse_condition.min",
+    "summary.inverse_condition.max", "summary.inverse_condition.mean", "w_kappa0.area_grid",
+)  # fmt: skip
+REGION_PATHS = (
+    "w_kappa0.area", "w_kappa0.rectangle_region_area", "w_kappa0.largest_inverse_condition.value",
+    "w_kappa0.largest_inverse_condition.x", "w_kappa0.largest_inverse_condition.y",
+)  # fmt: skip
 
 _KAPPA = r"$1/\kappa$"
 _BETA_MIN = r"$\beta_{\min}$"

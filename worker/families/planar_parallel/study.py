@@ -23,19 +23,12 @@ in tiles (to about 1e-15).
 
 from __future__ import annotations
 
+from worker.families.planar_parallel.result_paths import GRID_PATHS, REGION_PATHS
 from worker.study_kernels import KernelPlan, KernelRequest, StudyKernel
 
 __all__ = ["CONDITIONING_MAP_KERNEL", "COVERS", "GRID_PATHS", "REGION_PATHS"]
 
-#: Paths read from the designs' grids, from W_kappa0's column search, and echoes.
-GRID_PATHS = (
-    "summary.reachable_points", "summary.reachable_area_grid", "summary.inverse_condition.min",
-    "summary.inverse_condition.max", "summary.inverse_condition.mean", "w_kappa0.area_grid",
-)  # fmt: skip
-REGION_PATHS = (
-    "w_kappa0.area", "w_kappa0.rectangle_region_area", "w_kappa0.largest_inverse_condition.value",
-    "w_kappa0.largest_inverse_condition.x", "w_kappa0.largest_inverse_condition.y",
-)  # fmt: skip
+#: Paths the kernel echoes (GRID_PATHS, REGION_PATHS: :mod:`.result_paths`).
 ECHO_PATHS = (
     "l1", "l2", "e", "delta", "working_mode[]", "w_kappa0.inverse_condition_limit",
     "discretisation.grid.bounds[]", "discretisation.grid.points_per_axis",
@@ -49,6 +42,7 @@ SECONDS_PER_COST = 4e-7
 
 
 def _prepare(request: KernelRequest) -> KernelPlan:
+    # lazy: the kernel's arithmetic (scipy) loads when a study runs, not with the registry
     from worker.families.planar_parallel.study_plan import ConditioningMapPlan
 
     return ConditioningMapPlan.of(request)

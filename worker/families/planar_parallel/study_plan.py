@@ -22,7 +22,7 @@ from worker.families.planar_parallel.kinematics.study_kernel import (
     map_summary,
 )
 from worker.families.planar_parallel.optimisation_spec import MIN_INVERSE_CONDITION_LIMIT
-from worker.families.planar_parallel.study import GRID_PATHS, REGION_PATHS
+from worker.families.planar_parallel.result_paths import GRID_PATHS, REGION_PATHS
 from worker.study_kernels import KernelBlock, KernelRequest, Refusal
 
 if TYPE_CHECKING:

@@ -39,24 +39,27 @@ from worker.families.planar_serial.result_paths import (
 )
 from worker.families.planar_serial.specs import DexterityMapSpec, SynthesisSpec
 from worker.families.planar_serial.study import DEXTERITY_MAP_KERNEL
-from worker.processes import ProcessDefinition, ProcessFile, data_files, figure_files
+from worker.processes import FamilyInfo, ProcessDefinition, ProcessFile, data_files, figure_files
 
-__all__ = ["DESIGN", "DEXTERITY_MAP", "PROCESSES", "SYNTHESIS"]
+__all__ = ["DESIGN", "DEXTERITY_MAP", "FAMILY", "PROCESSES", "SYNTHESIS"]
 
 
 def _run_dexterity_map(spec: DexterityMapSpec, ctx: JobContext) -> JobOutcome:
+    # lazy: the job module (matplotlib, scipy) loads when a job runs, not with the registry
     from worker.families.planar_serial.jobs.dexterity_map import run_dexterity_map
 
     return run_dexterity_map(spec, ctx)
 
 
 def _run_synthesis(spec: SynthesisSpec, ctx: JobContext) -> JobOutcome:
+    # lazy: the job module (matplotlib, scipy) loads when a job runs, not with the registry
     from worker.families.planar_serial.jobs.synthesis import run_synthesis
 
     return run_synthesis(spec, ctx)
 
 
 def _run_design(spec: DesignSpec, ctx: JobContext) -> JobOutcome:
+    # lazy: the job module (matplotlib, scipy) loads when a job runs, not with the registry
     from worker.families.planar_serial.jobs.optimal_links import run_design
 
     return run_design(spec, ctx)
@@ -261,6 +264,16 @@ DESIGN = ProcessDefinition(
     time_limit_s=TIME_LIMIT_S,
     attempt_time_limit=design_time_limit,
     version="2.0.0",
+)
+
+#: Who this family is: the tag its operations are listed under, and its paper.
+FAMILY = FamilyInfo(
+    name="planar_serial",
+    tag="Three-link planar serial arms",
+    description=(
+        "Patel & Sobh: synthesis from task points or a trajectory, dexterity maps, joint limits."
+    ),
+    paper="Patel & Sobh 2012",
 )
 
 #: This family's processes, in the order GET /v1/processes lists them.

@@ -20,6 +20,7 @@ from pydantic import Field, field_validator, model_validator
 from worker.common.field_errors import field_error, fields_error
 from worker.common.numeric_ranges import MAX_LENGTH_RATIO, Coordinate, PositiveLength
 from worker.common.specs import entries
+from worker.families.planar_serial.jobs.trajectories import task_distance_range
 from worker.families.planar_serial.specs import LENGTH_UNIT, TaskInputs
 
 __all__ = [
@@ -228,8 +229,6 @@ class DesignSpec(TaskInputs):
         """(d_min, d_max) the paper's rule uses: the task's exact distance range from the
         origin (the trajectory's when there is one, as in the paper), rounded outward to
         whole units with round_distances."""
-        from worker.families.planar_serial.jobs.trajectories import task_distance_range
-
         found = task_distance_range(self.trajectory, self.task_points)
         if self.round_distances:
             return float(math.floor(found.d_min)), float(math.ceil(found.d_max))

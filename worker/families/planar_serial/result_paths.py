@@ -6,7 +6,24 @@ from __future__ import annotations
 from worker.result_paths import ResultPathInfo as R
 from worker.result_paths import prefixed
 
-__all__ = ["DESIGN_RESULT_PATHS", "DEXTERITY_MAP_RESULT_PATHS", "SYNTHESIS_RESULT_PATHS"]
+__all__ = [
+    "DESIGN_RESULT_PATHS",
+    "DEXTERITY_MAP_RESULT_PATHS",
+    "MAP_PATHS",
+    "SYNTHESIS_RESULT_PATHS",
+]
+
+_MAP_SUMMARY = ("d_z_max", "d_z_mean_reachable", "D_mean_reachable", "reachable_points",
+                "fully_dexterous_points")  # fmt: skip
+_MAP_AREAS = ("reachable", "fully_dexterous", "reachable_grid", "fully_dexterous_grid",
+              "cell_area", "unlimited_reference.reachable",
+              "unlimited_reference.fully_dexterous")  # fmt: skip
+#: The dexterity map's paths read from the map over the grid (each design's own map, as
+#: the job's): its study kernel's (:mod:`.study`).
+MAP_PATHS = (
+    *(f"summary.{name}" for name in _MAP_SUMMARY),
+    *(f"areas.{name}" for name in _MAP_AREAS),
+)
 
 _SAMPLED = "with joint limits and method 'orientation-sampling'"
 

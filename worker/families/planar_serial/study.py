@@ -23,6 +23,8 @@ reach is a warning, not a refusal: its d_z is 0.
 
 from __future__ import annotations
 
+from worker.families.planar_serial.result_paths import MAP_PATHS
+from worker.families.planar_serial.study_plan import DexterityMapPlan
 from worker.study_kernels import KernelPlan, KernelRequest, StudyKernel
 
 __all__ = ["COVERS", "DEXTERITY_MAP_KERNEL", "MAP_PATHS", "SECONDS_PER_POINT_EVALUATION"]
@@ -38,12 +40,6 @@ _ECHOES = (
     "discretisation.radial_section.samples",
     "discretisation.radial_section.d_to",
 )
-_SUMMARY = ("d_z_max", "d_z_mean_reachable", "D_mean_reachable", "reachable_points",
-            "fully_dexterous_points")  # fmt: skip
-_AREAS = ("reachable", "fully_dexterous", "reachable_grid", "fully_dexterous_grid", "cell_area",
-          "unlimited_reference.reachable", "unlimited_reference.fully_dexterous")  # fmt: skip
-#: The paths read from the map over the grid (each design's own map, as the job's).
-MAP_PATHS = (*(f"summary.{name}" for name in _SUMMARY), *(f"areas.{name}" for name in _AREAS))
 COVERS = (
     *_ECHOES,
     *MAP_PATHS,
@@ -59,8 +55,6 @@ SECONDS_PER_POINT_EVALUATION = 1.5e-7
 
 
 def _prepare(request: KernelRequest) -> KernelPlan:
-    from worker.families.planar_serial.study_plan import DexterityMapPlan
-
     return DexterityMapPlan.of(request)
 
 

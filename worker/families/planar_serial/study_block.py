@@ -31,7 +31,7 @@ from worker.families.planar_serial.kinematics.study_kernel import (
     designs_regions,
     trajectory_statistics,
 )
-from worker.families.planar_serial.study import MAP_PATHS
+from worker.families.planar_serial.result_paths import MAP_PATHS
 
 if TYPE_CHECKING:
     from worker.families.planar_serial.study_plan import DexterityMapPlan

@@ -20,7 +20,7 @@ from worker.families.planar_serial.jobs.dexterity_evaluation import (
     limited_joints,
 )
 from worker.families.planar_serial.jobs.trajectories import trajectory_samples
-from worker.families.planar_serial.study import MAP_PATHS
+from worker.families.planar_serial.result_paths import MAP_PATHS
 from worker.families.planar_serial.study_block import BlockNumbers
 from worker.study_kernels import KernelBlock, KernelRequest, Refusal
 

@@ -47,24 +47,27 @@ from worker.families.spherical_parallel.result_paths import (
 )
 from worker.families.spherical_parallel.specs import ConditioningMapSpec, DesignSpaceSpec
 from worker.families.spherical_parallel.study import CONDITIONING_MAP_KERNEL
-from worker.processes import ProcessDefinition, ProcessFile, data_files, figure_files
+from worker.processes import FamilyInfo, ProcessDefinition, ProcessFile, data_files, figure_files
 
-__all__ = ["CONDITIONING_MAP", "DESIGN_SPACE", "OPTIMISATION", "PROCESSES"]
+__all__ = ["CONDITIONING_MAP", "DESIGN_SPACE", "FAMILY", "OPTIMISATION", "PROCESSES"]
 
 
 def _run_conditioning_map(spec: ConditioningMapSpec, ctx: JobContext) -> JobOutcome:
+    # lazy: the job module (matplotlib, scipy) loads when a job runs, not with the registry
     from worker.families.spherical_parallel.jobs.conditioning_map import run_conditioning_map
 
     return run_conditioning_map(spec, ctx)
 
 
 def _run_design_space(spec: DesignSpaceSpec, ctx: JobContext) -> JobOutcome:
+    # lazy: the job module (matplotlib, scipy) loads when a job runs, not with the registry
     from worker.families.spherical_parallel.jobs.design_space import run_design_space
 
     return run_design_space(spec, ctx)
 
 
 def _run_optimisation(spec: OptimisationSpec, ctx: JobContext) -> JobOutcome:
+    # lazy: the job module (matplotlib, scipy) loads when a job runs, not with the registry
     from worker.families.spherical_parallel.jobs.optimisation import run_optimisation
 
     return run_optimisation(spec, ctx)
@@ -277,6 +280,17 @@ OPTIMISATION = ProcessDefinition(
     cost_limit=OPTIMISATION_COST_LIMIT,
     cost_unit=COST_UNIT,
     time_limit_s=OPTIMISATION_TIME_LIMIT_S,
+)
+
+#: Who this family is: the tag its operations are listed under, and its paper.
+FAMILY = FamilyInfo(
+    name="spherical_parallel",
+    tag="Spherical parallel manipulators",
+    description=(
+        "Bai 2010: kinematics, conditioning over an orientation workspace, the design "
+        "space and the optimum design."
+    ),
+    paper="Bai 2010",
 )
 
 #: This family's processes, in the order GET /v1/processes lists them.

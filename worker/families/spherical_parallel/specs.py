@@ -153,6 +153,7 @@ class ConditioningMapSpec(_Design):
         design by design."""
         if in_study_template(info.context):
             return self
+        # lazy: the reach check (scipy) loads when inputs are validated, not with the registry
         from worker.families.spherical_parallel.kinematics import SpmDesign, Workspace
         from worker.families.spherical_parallel.kinematics.reach import ReachGrids, reaching
 

@@ -108,6 +108,7 @@ class SpmPlan:
         return samples + minimum + reach
 
     def evaluate(self, values: FloatArray) -> KernelBlock:
+        # lazy: the kernel's arithmetic (scipy) loads when a study runs, not with the registry
         from worker.families.spherical_parallel.study_block import evaluate_block
 
         return evaluate_block(self, values)
@@ -141,6 +142,7 @@ class SpmPlan:
 
 
 def _prepare(request: KernelRequest) -> SpmPlan:
+    # lazy: the kernel's arithmetic (scipy) loads when a study runs, not with the registry
     from worker.families.spherical_parallel.jobs.workspace_sampling import (
         sampling_entry,
         workspace_entry,

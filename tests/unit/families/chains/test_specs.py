@@ -27,7 +27,7 @@ from worker.families.chains.specs import (
     MultiLoopChain,
     PolygonalLink,
 )
-from worker.processes import default_registry
+from worker.registry import default_registry
 from worker.submission import validate_inputs
 
 #: Fig 4a without link 7: a six-link Watt chain (mobility 1).

@@ -29,7 +29,8 @@ from worker.common.numeric_ranges import MAX_COORDINATE, MAX_LENGTH, MIN_LENGTH,
 from worker.errors import InvalidInputs
 from worker.families.planar_parallel import kinematics as pp
 from worker.families.planar_parallel.optimisation_spec import eq17_reach
-from worker.processes import ProcessDefinition, default_registry
+from worker.processes import ProcessDefinition
+from worker.registry import default_registry
 from worker.submission import validate_inputs
 
 RUN_EXAMPLES = int(os.environ.get("DEXLAB_PROPERTY_EXAMPLES", "0"))

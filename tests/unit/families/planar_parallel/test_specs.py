@@ -26,7 +26,7 @@ from worker.families.planar_parallel.specs import (
     OptimisationSpec,
     sweep_deltas,
 )
-from worker.processes import default_registry
+from worker.registry import default_registry
 from worker.settings import WorkerSettings
 from worker.store import open_store
 from worker.submission import submit, validate_inputs

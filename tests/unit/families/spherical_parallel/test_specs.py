@@ -24,7 +24,7 @@ from worker.families.spherical_parallel.costs import (
 )
 from worker.families.spherical_parallel.optimisation_spec import SCREEN_PER_START, OptimisationSpec
 from worker.families.spherical_parallel.specs import BetaRange, ConditioningMapSpec, DesignSpaceSpec
-from worker.processes import default_registry
+from worker.registry import default_registry
 
 CONE_120 = {"tilt_max_deg": 60}
 DESIGN = {"alpha1_deg": 60, "alpha2_deg": 90, "beta_deg": 90}

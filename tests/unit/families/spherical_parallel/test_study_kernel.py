@@ -19,7 +19,7 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 from tests.unit.worker.studies.engines import REGISTRY, assert_engines_agree, both_engines, field
-from worker.studies.process import STUDY
+from tests.unit.worker.studies.registry import STUDY
 from worker.studies.rows import FEASIBLE, NO_VALUE, REFUSED
 
 SHORTCUT = [("inputs.workspace", NO_VALUE)]

@@ -15,7 +15,7 @@ from typing import Any
 
 import numpy as np
 
-from worker.processes import default_registry
+from worker.registry import default_registry
 from worker.studies.batched import evaluate_batched
 from worker.studies.engine import choose_engine
 from worker.studies.evaluation import chunk_rows, evaluate_block

@@ -21,7 +21,7 @@ from typing import Any
 from hypothesis import HealthCheck, settings
 from hypothesis import strategies as st
 
-from worker.processes import default_registry
+from worker.registry import default_registry
 
 __all__ = ["names_a_place", "property_settings", "sound_study_bodies", "study_bodies"]
 

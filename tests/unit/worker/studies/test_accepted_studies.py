@@ -11,16 +11,16 @@ from typing import Any
 
 from hypothesis import event, example, given
 
+from tests.unit.worker.studies.registry import STUDY, dry_check
 from tests.unit.worker.studies.study_requests import (
     property_settings,
     sound_study_bodies,
     study_bodies,
 )
 from worker.errors import InvalidInputs
-from worker.processes import default_registry
+from worker.registry import default_registry
 from worker.studies.chunk import ChunkSpec
 from worker.studies.evaluation import evaluate_block
-from worker.studies.process import STUDY, dry_check
 from worker.studies.spec import StudySpec
 from worker.submission import validate_inputs
 
@@ -44,7 +44,7 @@ def accepted(inputs: dict[str, Any]) -> StudySpec | None:
 
 def check_in_the_worker(spec: StudySpec) -> None:
     stored = json.loads(json.dumps(spec.model_dump(mode="json")))
-    again = StudySpec.model_validate(stored)  # what the worker's split validates
+    again = STUDY.inputs_model.model_validate(stored)  # what the worker validates
     assert again == spec
     assert STUDY.fan_out is not None
     chunks = STUDY.fan_out.split(again)

@@ -12,13 +12,13 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from tests.unit.families.conftest import RecordingContext
-from worker.processes import default_registry
+from tests.unit.worker.studies.registry import STUDY, chunk_inputs, dry_check, study_cost
+from worker.registry import default_registry
 from worker.studies import chunking
 from worker.studies.batched import objective_column
 from worker.studies.engine import choose_engine, pattern_matches
 from worker.studies.examples import STUDY_EXAMPLES
 from worker.studies.paths import parse_result_path, read_result
-from worker.studies.process import STUDY, chunk_inputs, dry_check, study_cost
 from worker.studies.spec import StudySpec
 
 REGISTRY = default_registry()

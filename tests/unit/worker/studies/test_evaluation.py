@@ -9,7 +9,8 @@ import pytest
 from pydantic import ValidationError
 
 from tests.unit.families.conftest import RecordingContext
-from worker.processes import default_registry
+from tests.unit.worker.studies.registry import STUDY_INPUTS
+from worker.registry import default_registry
 from worker.studies.evaluation import design_inputs, evaluate_block
 from worker.studies.spec import StudySpec
 
@@ -79,4 +80,4 @@ def test_a_block_is_the_slice_of_the_whole() -> None:
 )
 def test_bad_studies_are_refused(change: dict[str, Any], message: str) -> None:
     with pytest.raises(ValidationError, match=message):
-        StudySpec.model_validate({**STUDY, **change})
+        STUDY_INPUTS.model_validate({**STUDY, **change})

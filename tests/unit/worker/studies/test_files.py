@@ -12,9 +12,9 @@ from typing import Any
 import numpy as np
 
 from tests.unit.families.conftest import RecordingContext
-from worker.processes import default_registry
+from tests.unit.worker.studies.registry import STUDY
+from worker.registry import default_registry
 from worker.studies.files import objective_entry, objective_unit
-from worker.studies.process import STUDY
 from worker.studies.spec import StudySpec
 
 REGISTRY = default_registry()

@@ -6,7 +6,7 @@ from typing import Any
 
 import pytest
 
-from worker.processes import default_registry
+from worker.registry import default_registry
 from worker.studies.number_inputs import takes_number
 from worker.studies.paths import parse_input_path
 

@@ -11,9 +11,10 @@ from typing import Any
 import pytest
 
 from tests.unit.families.conftest import RecordingContext
-from worker.processes import PaperPoint, default_registry
+from tests.unit.worker.studies.registry import STUDY
+from worker.processes import PaperPoint
+from worker.registry import default_registry
 from worker.studies.paper_points import paper_marks
-from worker.studies.process import STUDY
 from worker.studies.spec import StudySpec
 
 SPM = default_registry().get("spm-conditioning-map")

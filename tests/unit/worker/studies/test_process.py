@@ -8,10 +8,10 @@ from typing import Any
 import pytest
 
 from tests.unit.families.conftest import RecordingContext
-from worker.processes import default_registry
+from tests.unit.worker.studies.registry import STUDY, chunk_inputs, dry_check, study_cost
+from worker.registry import default_registry
 from worker.studies.evaluation import evaluate_block
 from worker.studies.paths import parse_result_path, reported
-from worker.studies.process import STUDY, chunk_inputs, dry_check, study_cost
 from worker.studies.spec import StudySpec
 
 BASE: dict[str, Any] = {

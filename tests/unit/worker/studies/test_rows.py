@@ -6,10 +6,10 @@ from __future__ import annotations
 import numpy as np
 
 from tests.unit.families.conftest import RecordingContext
+from tests.unit.worker.studies.registry import chunk_inputs, run_chunk
 from worker.contract import ChildEnd, JobStatus
 from worker.studies.assembly import collect
-from worker.studies.chunk import ChunkSpec, run_chunk
-from worker.studies.chunking import chunk_inputs
+from worker.studies.chunk import ChunkSpec
 from worker.studies.examples import STUDY_EXAMPLES
 from worker.studies.rows import (
     MAX_MESSAGES,

@@ -9,6 +9,7 @@ from typing import Any
 import pytest
 from pydantic import ValidationError
 
+from tests.unit.worker.studies.registry import STUDY_INPUTS
 from worker.studies.evaluation import design_inputs
 from worker.studies.spec import StudySpec
 
@@ -24,7 +25,7 @@ BASE: dict[str, Any] = {
 def refusal(**change: Any) -> tuple[tuple[str | int, ...], str]:
     """The one error of the study ``BASE`` with ``change``: its location and message."""
     with pytest.raises(ValidationError) as caught:
-        StudySpec.model_validate({**BASE, **change})
+        STUDY_INPUTS.model_validate({**BASE, **change})
     (error,) = caught.value.errors()
     return error["loc"], error["msg"]
 

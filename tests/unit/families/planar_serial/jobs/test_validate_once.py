@@ -11,7 +11,7 @@ import pytest
 from tests.unit.families.conftest import RecordingContext
 from worker.families.planar_serial.kinematics import inputs
 from worker.families.planar_serial.kinematics.inputs import Arm
-from worker.processes import default_registry
+from worker.registry import default_registry
 from worker.submission import validate_inputs
 
 MAP = default_registry().get("planar3r-dexterity-map")
