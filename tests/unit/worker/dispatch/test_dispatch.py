@@ -68,15 +68,17 @@ def test_sweeper_resends_lost_and_expired_jobs(tmp_path: Path) -> None:
 
 def test_sweeper_resends_only_what_the_brokers_queue_lacks(tmp_path: Path) -> None:
     """A backlog older than redispatch_after_s is not lost while the queue holds a
-    message for each waiting job; the deficit is re-sent, oldest first."""
+    message for each waiting job; the deficit is re-sent, oldest first.  (Half a
+    second overdue, so that a loaded machine's pauses between the sweeps below do not
+    make the jobs just sent overdue again.)"""
     store = open_store(f"sqlite:///{tmp_path / 'j.db'}")
     jobs = [store.create_job(NewJob("p", {}, time_limit_s=30, max_attempts=3))[0]
             for _ in range(4)]  # fmt: skip
     for job in jobs:
         store.mark_dispatched(job.job_id)
-    time.sleep(0.02)
+    time.sleep(0.6)
     fake = RecordingDispatch(waiting=4)
-    sweeper = Sweeper(WorkerSettings(redispatch_after_s=0.01), store, fake)
+    sweeper = Sweeper(WorkerSettings(redispatch_after_s=0.5), store, fake)
     assert sweeper.sweep() == 0 and fake.sent == []
     fake.waiting = 5  # more messages than jobs (duplicates, a retry on its way)
     assert sweeper.sweep() == 0
@@ -90,7 +92,7 @@ def test_sweeper_resends_only_what_the_brokers_queue_lacks(tmp_path: Path) -> No
     assert fake.sent == [(jobs[3].job_id, 30)]
     store.mark_dispatched(jobs[3].job_id)
     assert sweeper.sweep() == 0  # every job was sent again just now: none is overdue
-    time.sleep(0.02)
+    time.sleep(0.6)
     fake.waiting = None  # the broker cannot say: every overdue job is sent again
     assert sweeper.sweep() == 4
     assert store.accepted_count(2) == 2 and store.accepted_count(10) == 4
