@@ -64,7 +64,6 @@ from worker.store.records import (
 )
 
 __all__ = [
-    "ROLES",
     "ApiKey",
     "CallbackClaim",
     "CallbacksPort",
@@ -353,17 +352,3 @@ class JobStore(
 ):
     """The whole port: every role above.  Implementations:
     :class:`worker.store.sqlite.SqliteJobStore`, :class:`worker.store.postgres.PostgresJobStore`."""
-
-
-#: The roles, in the order the table above gives them.
-ROLES: tuple[type, ...] = (
-    LifecyclePort,
-    JobsPort,
-    QueuePort,
-    ResultsPort,
-    KeysPort,
-    RetentionPort,
-    CallbacksPort,
-    WorkersPort,
-    MetricsPort,
-)

@@ -23,8 +23,9 @@ module restates any of them (``tests/test_architecture_store.py`` checks it):
 
 from __future__ import annotations
 
+import threading
 from collections.abc import Iterator, Mapping, Sequence
-from contextlib import AbstractContextManager
+from contextlib import AbstractContextManager, suppress
 from typing import TYPE_CHECKING, Any, ClassVar
 
 from worker.contract import JobRecord, JobStatus
@@ -33,12 +34,52 @@ from worker.store.retry import Fault, Outage
 if TYPE_CHECKING:
     from worker.store.records import Claim, StoredArtifact
 
-__all__ = ["Conn", "Row", "SqlConnector"]
+__all__ = ["Conn", "Row", "SqlConnector", "ThreadConnections"]
 
 #: A DB-API connection of the dialect (``sqlite3.Connection``, ``psycopg.Connection``).
 Conn = Any
 #: A row read by name (``sqlite3.Row``, a psycopg ``dict_row``).
 Row = Any
+
+
+class ThreadConnections:
+    """A dialect's connections: one per thread, each remembered so that
+    :meth:`close_all` can close them from any thread."""
+
+    def __init__(self) -> None:
+        self._local = threading.local()
+        self._opened: list[Conn] = []
+        self._lock = threading.Lock()
+
+    def current(self) -> Conn | None:
+        """This thread's connection (None: none open)."""
+        return getattr(self._local, "conn", None)
+
+    def keep(self, conn: Conn) -> None:
+        """Make ``conn`` this thread's connection."""
+        self._local.conn = conn
+        with self._lock:
+            self._opened.append(conn)
+
+    def drop(self) -> None:
+        """Forget and close this thread's connection (a close that fails is moot: the
+        connection is dead already)."""
+        conn = self.current()
+        self._local.conn = None
+        if conn is not None:
+            with self._lock:
+                if conn in self._opened:
+                    self._opened.remove(conn)
+            with suppress(Exception):
+                conn.close()
+
+    def close_all(self) -> None:
+        """Close every connection opened, in any thread."""
+        with self._lock:
+            opened, self._opened = self._opened, []
+        for conn in opened:
+            conn.close()
+        self._local = threading.local()
 
 
 class SqlConnector:
