@@ -141,6 +141,18 @@ def test_each_public_store_method_is_in_exactly_one_role() -> None:
     assert members(JobStore) == set(), "JobStore adds nothing to its roles"
 
 
+def test_the_port_docstring_lists_each_role_as_it_is() -> None:
+    import worker.store.base as port
+
+    listed: dict[str, set[str]] = {}
+    text = " ".join((port.__doc__ or "").split())
+    for item in text.split("- :class:`")[1:]:
+        role, _, rest = item.partition("`: ")
+        methods = rest.split(".")[0].replace("(quotas: :class:`QueueLimits`)", "")
+        listed[role] = {m.strip() for m in methods.split(",")}
+    assert listed == {role.__name__: members(role) for role in roles()}
+
+
 def store_calls(path: Path) -> set[str]:
     """The attributes read off a store holder in ``path`` (``store.get_job``,
     ``self._store.complete``, ``request.app.state.store.ping``)."""

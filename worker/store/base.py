@@ -5,25 +5,23 @@ Every write a worker makes on behalf of a running attempt carries the attempt's 
 token; the store applies it only while that token is current and the job still
 running, so a stale or duplicate worker can never overwrite a newer attempt.
 
-=====================  ==============================================================
-role                   methods
-=====================  ==============================================================
-:class:`LifecyclePort`  initialise, schema_version, ping, check_storage, close
-:class:`JobsPort`       create_job (quotas: :class:`QueueLimits`), get_job, statuses,
-                        list_jobs, dismiss, set_request_options, request_options
-:class:`QueuePort`      claim_next, claim_job, reap_expired, heartbeat,
-                        report_progress, fail, expire_leases_of, split, children,
-                        mark_dispatched, undispatched, take_overdue, accepted_count
-:class:`ResultsPort`    complete, get_result, child_results, artifact,
-                        artifact_chunks, get_artifact
-:class:`KeysPort`       create_key, seed_key, revoke_key, api_keys, record_key_use,
-                        shared_secret
-:class:`RetentionPort`  expire_jobs, forget_expired, expired_at
-:class:`CallbacksPort`  claim_callbacks, callback_log, finish_callback
-:class:`WorkersPort`    register_worker, worker_heartbeat, unregister_worker,
-                        live_workers
-:class:`MetricsPort`    job_tallies, queue_depth
-=====================  ==============================================================
+The roles, and the methods each holds:
+
+- :class:`LifecyclePort`: initialise, schema_version, ping, check_storage, close.
+- :class:`JobsPort`: create_job (quotas: :class:`QueueLimits`), get_job, statuses,
+  list_jobs, dismiss, set_request_options, request_options.
+- :class:`QueuePort`: claim_next, claim_job, reap_expired, heartbeat, report_progress,
+  fail, expire_leases_of, split, children, mark_dispatched, undispatched,
+  take_overdue, accepted_count.
+- :class:`ResultsPort`: complete, get_result, child_results, artifact,
+  artifact_chunks, get_artifact.
+- :class:`KeysPort`: create_key, seed_key, revoke_key, api_keys, record_key_use,
+  shared_secret.
+- :class:`RetentionPort`: expire_jobs, forget_expired, expired_at.
+- :class:`CallbacksPort`: claim_callbacks, callback_log, finish_callback.
+- :class:`WorkersPort`: register_worker, worker_heartbeat, unregister_worker,
+  live_workers.
+- :class:`MetricsPort`: job_tallies, queue_depth.
 
 :class:`JobStore` is all of them: what :func:`worker.store.open_store` returns and
 what the app, the pool and the dispatchers hold; a component that needs one role may

@@ -1,6 +1,8 @@
 """The job store's logic, written once in portable SQL for SQLite and PostgreSQL.
 
-A dialect subclass supplies connections, transactions, fault classification and where
+Each topic class below is built on :class:`worker.store.connector.SqlConnector`, which
+declares the connection, transaction and statement helpers once; a dialect subclass
+overrides its hooks: connections, transactions, fault classification and where
 artifact bytes live (:class:`worker.store.sqlite.SqliteJobStore`,
 :class:`worker.store.postgres.PostgresJobStore`).  Queries use ``?`` placeholders;
 every write is one short transaction, and the rows a decision depends on are locked
