@@ -3,7 +3,7 @@
 - The port (:mod:`worker.store.base`) is a set of role protocols; :class:`JobStore` is
   all of them and nothing more.  Each public method of the SQL store belongs to exactly
   one role, and every store method that ``service/``, ``worker/`` or ``dexlab/`` calls
-  is in a role.
+  is in a role; none of them calls a private store method.
 - The connection helpers and dialect hooks are written in
   :mod:`worker.store.connector`, overridden only by the dialects: no topic module of
   ``worker/store/`` restates them, and none keeps a ``TYPE_CHECKING`` block of method
@@ -185,6 +185,8 @@ def test_the_roles_cover_every_store_method_the_tree_calls() -> None:
     public = {(where, a) for where, a in called if not a.startswith("_")}
     assert len({a for _, a in public}) >= 30, "the scan found too few store calls to trust"
     assert sorted((where, a) for where, a in public if a not in port) == []
+    # Nobody outside the store reaches behind the port (a connection, a statement).
+    assert sorted((where, a) for where, a in called if a.startswith("_")) == []
 
 
 def test_the_call_scan_sees_a_call_outside_the_port(tmp_path: Path) -> None:
