@@ -112,6 +112,17 @@ def test_no_topic_module_keeps_method_stubs_for_the_type_checker() -> None:
     assert stubbed == []
 
 
+def test_the_implementation_imports_values_not_the_port() -> None:
+    """The port describes the store; the store's modules build on the values
+    (:mod:`worker.store.records`) and the connector, never on the port itself."""
+    importers = []
+    for path in sorted(set(STORE.glob("*.py")) - {STORE / "__init__.py", STORE / "base.py"}):
+        for node in ast.walk(ast.parse(path.read_text())):
+            if isinstance(node, ast.ImportFrom) and node.module == "worker.store.base":
+                importers.append(path.name)
+    assert importers == []
+
+
 def test_the_helpers_are_declared_in_the_connector() -> None:
     declared = class_level_names(ast.parse(CONNECTOR.read_text()))
     assert declared >= HELPERS, sorted(HELPERS - declared)

@@ -22,8 +22,8 @@ import uuid
 from collections.abc import Callable, Sequence
 from typing import Any
 
-from worker.store.base import ApiKey
 from worker.store.connector import Conn, SqlConnector
+from worker.store.records import ApiKey
 from worker.store.retry import retrying
 
 __all__ = [

@@ -20,8 +20,8 @@ from typing import Any
 from worker.contract import Artifact, ArtifactInfo, JobStatus
 from worker.request_hash import request_hash
 from worker.store.artifact_files import checked_name
-from worker.store.base import StoredArtifact
 from worker.store.connector import Conn, SqlConnector
+from worker.store.records import StoredArtifact
 from worker.store.retry import retrying
 
 __all__ = ["ArtifactIndex"]

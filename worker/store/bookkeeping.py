@@ -7,8 +7,8 @@ import time
 from collections.abc import Sequence
 
 from worker.contract import JobStatus
-from worker.store.base import WorkerInfo
 from worker.store.connector import SqlConnector
+from worker.store.records import WorkerInfo
 from worker.store.retry import retrying
 
 __all__ = ["Bookkeeping"]

@@ -17,8 +17,8 @@ from collections.abc import Mapping
 from typing import Any
 
 from worker.contract import JobStatus
-from worker.store.base import CallbackClaim
 from worker.store.connector import Conn, SqlConnector
+from worker.store.records import CallbackClaim
 from worker.store.retry import retrying
 
 __all__ = ["CALLBACK_EVENTS", "Callbacks"]

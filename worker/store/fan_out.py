@@ -23,8 +23,8 @@ from collections.abc import Iterator, Mapping, Sequence
 from typing import Any
 
 from worker.contract import ChildEnd, JobStatus
-from worker.store.base import NewJob
 from worker.store.connector import Conn, Row, SqlConnector
+from worker.store.records import NewJob
 from worker.store.retry import retrying
 
 __all__ = ["FanOut"]

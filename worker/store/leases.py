@@ -11,8 +11,8 @@ from collections.abc import Mapping
 from typing import Any
 
 from worker.contract import JobStatus
-from worker.store.base import Claim, HeartbeatAck
 from worker.store.connector import Conn, Row, SqlConnector
+from worker.store.records import Claim, HeartbeatAck
 from worker.store.retry import retrying
 
 __all__ = ["Leases"]

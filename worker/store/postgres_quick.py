@@ -31,8 +31,8 @@ import uuid
 from collections.abc import Sequence
 
 from worker.contract import Artifact, JobStatus
-from worker.store.base import Claim
 from worker.store.connector import SqlConnector
+from worker.store.records import Claim
 from worker.store.tallies import DURATION_BUCKETS, QUEUE_WAIT_BUCKETS, bound_label
 
 __all__ = ["QuickStatements", "bucket_case"]

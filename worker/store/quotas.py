@@ -32,8 +32,8 @@ from typing import Any
 
 from worker.contract import JobStatus
 from worker.errors import QueueFull, QuotaExceeded, RateLimited
-from worker.store.base import NewJob
 from worker.store.connector import Conn, SqlConnector
+from worker.store.records import NewJob
 
 __all__ = ["QUEUE_FULL_RETRY_S", "QUOTA_RETRY_S", "Quotas"]
 

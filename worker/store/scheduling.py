@@ -25,8 +25,8 @@ from __future__ import annotations
 import time
 
 from worker.contract import JobStatus
-from worker.store.base import Claim, ClaimAttempt
 from worker.store.connector import Conn, SqlConnector
+from worker.store.records import Claim, ClaimAttempt
 from worker.store.retry import retrying
 
 __all__ = ["CAPPED_RETRY_S", "Scheduling"]

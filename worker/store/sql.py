@@ -32,7 +32,6 @@ from worker.contract import ArtifactInfo, JobRecord, JobStatus
 from worker.errors import IdempotencyConflict
 from worker.store.api_keys import ApiKeys
 from worker.store.artifact_index import ArtifactIndex
-from worker.store.base import JobFilter, JobPage, NewJob
 from worker.store.bookkeeping import Bookkeeping
 from worker.store.callbacks import Callbacks
 from worker.store.connector import Conn, Row
@@ -40,6 +39,7 @@ from worker.store.fan_out import FanOut
 from worker.store.job_listing import filter_clauses
 from worker.store.leases import Leases
 from worker.store.quotas import Quotas
+from worker.store.records import JobFilter, JobPage, NewJob
 from worker.store.retention import Retention
 from worker.store.retry import retrying
 from worker.store.scheduling import Scheduling

@@ -30,8 +30,8 @@ import math
 from collections.abc import Sequence
 
 from worker.contract import JobStatus
-from worker.store.base import JobTally
 from worker.store.connector import Conn, Row, SqlConnector
+from worker.store.records import JobTally
 from worker.store.retry import retrying
 
 __all__ = [
