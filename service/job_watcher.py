@@ -16,7 +16,7 @@ from collections import defaultdict
 from starlette.concurrency import run_in_threadpool
 
 from worker.contract import TERMINAL_STATUSES, JobStatus
-from worker.store.base import JobStore
+from worker.store.base import JobsPort
 
 __all__ = ["JobWatcher"]
 
@@ -29,7 +29,7 @@ _BATCH = 500
 class JobWatcher:
     """Wakes coroutines waiting for jobs to finish (start it in the app's lifespan)."""
 
-    def __init__(self, store: JobStore, interval_s: float = 0.1) -> None:
+    def __init__(self, store: JobsPort, interval_s: float = 0.1) -> None:
         self._store = store
         self._interval_s = interval_s
         self._waiters: defaultdict[str, set[asyncio.Future[None]]] = defaultdict(set)

@@ -17,7 +17,7 @@ from collections.abc import Callable
 
 from worker.dispatch.wake_ups import WakeUpListener
 from worker.settings import WorkerSettings
-from worker.store.base import Claim, JobStore
+from worker.store.base import Claim, WorkersPort
 
 __all__ = ["IdleWait"]
 
@@ -28,7 +28,7 @@ class IdleWait:
     def __init__(
         self,
         settings: WorkerSettings,
-        store: JobStore,
+        store: WorkersPort,
         worker_id: str,
         stop: threading.Event,
         wake_ups: WakeUpListener | None,

@@ -5,7 +5,7 @@ from __future__ import annotations
 import logging
 import time
 
-from worker.store.base import JobStore
+from worker.store.base import QueuePort
 
 __all__ = ["StoreProgress"]
 
@@ -25,7 +25,7 @@ class StoreProgress:
     """
 
     def __init__(
-        self, store: JobStore, job_id: str, lease_token: str, min_interval_s: float = 0.25
+        self, store: QueuePort, job_id: str, lease_token: str, min_interval_s: float = 0.25
     ) -> None:
         self._store = store
         self._job_id = job_id

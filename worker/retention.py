@@ -16,7 +16,7 @@ import threading
 
 from worker.errors import StoreUnavailable
 from worker.settings import WorkerSettings
-from worker.store.base import JobStore
+from worker.store.base import RetentionPort
 
 __all__ = ["BATCH", "MAX_BATCHES", "RetentionSweeper"]
 
@@ -30,7 +30,7 @@ MAX_BATCHES = 20
 class RetentionSweeper(threading.Thread):
     """Every ``settings.sweep_seconds``: :meth:`sweep` until told to stop."""
 
-    def __init__(self, settings: WorkerSettings, store: JobStore) -> None:
+    def __init__(self, settings: WorkerSettings, store: RetentionPort) -> None:
         super().__init__(name="dexlab-retention", daemon=True)
         self.settings = settings
         self.store = store

@@ -25,7 +25,7 @@ from service.auth.identity import ANONYMOUS_OPERATOR, Identity
 from service.auth.key_cache import KeyCache, KeyTable
 from service.auth.sessions import COOKIE_NAME, SessionSigner
 from worker.errors import StoreUnavailable
-from worker.store.base import ApiKey, JobStore
+from worker.store.base import ApiKey, KeysPort
 
 __all__ = ["SESSION_SECRET_NAME", "Authenticator", "session_signer"]
 
@@ -33,7 +33,7 @@ __all__ = ["SESSION_SECRET_NAME", "Authenticator", "session_signer"]
 SESSION_SECRET_NAME = "session-signing"
 
 
-def session_signer(store: JobStore, configured: str | None, lifetime_s: float) -> SessionSigner:
+def session_signer(store: KeysPort, configured: str | None, lifetime_s: float) -> SessionSigner:
     """The signer of this deployment's sessions: ``DEXLAB_SESSION_SECRET`` when set,
     else a secret generated once and kept in the store, so every replica signs and
     checks with the same one."""

@@ -19,7 +19,7 @@ from dataclasses import dataclass, field
 
 from worker.errors import StoreUnavailable
 from worker.store.api_keys import hash_secret
-from worker.store.base import ApiKey, JobStore
+from worker.store.base import ApiKey, KeysPort
 
 __all__ = ["KeyCache", "KeyTable"]
 
@@ -59,7 +59,7 @@ class KeyCache:
 
     def __init__(
         self,
-        store: JobStore,
+        store: KeysPort,
         max_age_s: float = 1.0,
         use_interval_s: float = 60.0,
         recheck_s: float = 0.1,

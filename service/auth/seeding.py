@@ -16,7 +16,7 @@ import logging
 from dataclasses import dataclass, field
 
 from worker.store.api_keys import MIN_SECRET_LENGTH, check_key_name, hash_secret
-from worker.store.base import JobStore
+from worker.store.base import KeysPort
 
 __all__ = ["DeclaredKey", "parse_api_keys", "seed_keys"]
 
@@ -74,7 +74,7 @@ def parse_api_keys(value: str) -> list[DeclaredKey]:
     return keys
 
 
-def seed_keys(store: JobStore, value: str) -> None:
+def seed_keys(store: KeysPort, value: str) -> None:
     """Make the keys ``value`` declares in ``store``, logging each outcome by name."""
     for key in parse_api_keys(value):
         outcome = store.seed_key(key.name, hash_secret(key.secret), key.admin)

@@ -20,10 +20,10 @@ import secrets
 import time
 import uuid
 from collections.abc import Callable, Sequence
-from contextlib import AbstractContextManager
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
-from worker.store.base import ApiKey
+from worker.store.connector import Conn, SqlConnector
+from worker.store.records import ApiKey
 from worker.store.retry import retrying
 
 __all__ = [
@@ -34,7 +34,6 @@ __all__ = [
     "new_secret",
 ]
 
-Conn = Any
 
 #: Secrets dexlab makes start with this, so a leaked one is easy to recognise.
 SECRET_PREFIX = "dxk_"
@@ -75,19 +74,8 @@ def _key(row: Any) -> ApiKey:
     )
 
 
-class ApiKeys:
+class ApiKeys(SqlConnector):
     """The key half of :class:`worker.store.sql.SqlJobStore`."""
-
-    lock_clause: str
-    retry_s: float
-
-    if TYPE_CHECKING:
-
-        def _conn(self) -> Conn: ...
-        def _write(self) -> AbstractContextManager[Conn]: ...
-        def _exec(self, conn: Conn, query: str, params: Sequence[Any] = ()) -> Any: ...
-        def _one(self, conn: Conn, query: str, params: Sequence[Any] = ()) -> Any: ...
-        def _all(self, conn: Conn, query: str, params: Sequence[Any] = ()) -> list[Any]: ...
 
     def _insert_key(self, conn: Conn, name: str, secret_hash: str, admin: bool) -> bool:
         """Insert the key unless its name is taken; whether it was inserted."""

@@ -15,74 +15,27 @@ import json
 import logging
 import time
 from collections.abc import Iterator, Mapping, Sequence
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
 from worker.contract import Artifact, ArtifactInfo, JobStatus
 from worker.request_hash import request_hash
 from worker.store.artifact_files import checked_name
-from worker.store.base import StoredArtifact
+from worker.store.connector import Conn, SqlConnector
+from worker.store.records import StoredArtifact
 from worker.store.retry import retrying
-
-if TYPE_CHECKING:
-    from contextlib import AbstractContextManager
 
 __all__ = ["ArtifactIndex"]
 
 log = logging.getLogger("dexlab.store")
 
-Conn = Any
 _RUNNING = JobStatus.RUNNING.value
 _SUCCESSFUL = JobStatus.SUCCESSFUL.value
 
 
-class ArtifactIndex:
+class ArtifactIndex(SqlConnector):
     """The artifact half of :class:`worker.store.sql.SqlJobStore`."""
 
-    lock_clause: str
-    retry_s: float
-
-    if TYPE_CHECKING:
-
-        def _conn(self) -> Conn: ...
-        def _write(self) -> AbstractContextManager[Conn]: ...
-        def _batch(self) -> AbstractContextManager[Conn]: ...
-        def _exec(self, conn: Conn, query: str, params: Sequence[Any] = ()) -> Any: ...
-        def _one(self, conn: Conn, query: str, params: Sequence[Any] = ()) -> Any: ...
-        def _all(self, conn: Conn, query: str, params: Sequence[Any] = ()) -> list[Any]: ...
-        def _tally_finish(self, conn: Conn, row: Any, status: JobStatus, now: float) -> None: ...
-        def _child_ended(
-            self,
-            conn: Conn,
-            child_id: str,
-            status: JobStatus,
-            error: Mapping[str, Any] | None,
-            now: float,
-        ) -> str | None: ...
-
-    # -- where the bytes live (dialect hooks) -------------------------------------------
-    def _put_artifact_data(
-        self,
-        job_id: str,
-        attempt: int,
-        name: str,
-        data: bytes,
-        conn: Conn | None = None,
-        lease_token: str | None = None,
-    ) -> bool:
-        """Store one attempt's artifact bytes durably (in ``conn``'s transaction when
-        given, during a migration).  With ``lease_token``, a store whose writers may
-        resume after a pause (another machine) fences every write on the lease: False
-        once the attempt no longer owns the job, and nothing more is written."""
-        raise NotImplementedError  # pragma: no cover - abstract
-
-    def _artifact_data(self, job_id: str, attempt: int, name: str) -> Iterator[bytes]:
-        """The bytes, a chunk at a time."""
-        raise NotImplementedError  # pragma: no cover - abstract
-
-    def _drop_artifact_data(self, job_id: str, keep_attempt: int | None) -> None:
-        """Remove the job's bytes: every attempt's, or all but ``keep_attempt``'s."""
-        raise NotImplementedError  # pragma: no cover - abstract
-
+    # -- bytes no index row points at ------------------------------------------------
     def _discard_artifact_data(self, job_id: str, keep_attempt: int | None = None) -> None:
         """Best-effort clean-up of bytes no index row points at (logged, never raised:
         what is left is found again by the next clean-up of this job)."""
@@ -194,7 +147,7 @@ class ArtifactIndex:
         if not artifacts:
             return
         conn.cursor().executemany(
-            self._sql(  # type: ignore[attr-defined]
+            self._sql(
                 "INSERT INTO artifact_index (job_id, name, media_type, title, size, "
                 "ord, attempt, etag) VALUES (?, ?, ?, ?, ?, ?, ?, ?)"
             ),

@@ -1,23 +1,70 @@
-"""The job store interface: the single source of truth for jobs, results and artifacts.
+"""The job store's port: the single source of truth for jobs, results and artifacts,
+as small protocols grouped by role.
 
 Every write a worker makes on behalf of a running attempt carries the attempt's lease
 token; the store applies it only while that token is current and the job still
 running, so a stale or duplicate worker can never overwrite a newer attempt.
+
+The roles, and the methods each holds:
+
+- :class:`LifecyclePort`: initialise, schema_version, ping, check_storage, close.
+- :class:`JobsPort`: create_job (quotas: :class:`QueueLimits`), get_job, statuses,
+  list_jobs, dismiss, set_request_options, request_options.
+- :class:`QueuePort`: claim_next, claim_job, reap_expired, heartbeat, report_progress,
+  fail, expire_leases_of, split, children, mark_dispatched, undispatched,
+  take_overdue, accepted_count.
+- :class:`ResultsPort`: complete, get_result, child_results, artifact,
+  artifact_chunks, get_artifact.
+- :class:`KeysPort`: create_key, seed_key, revoke_key, api_keys, record_key_use,
+  shared_secret.
+- :class:`RetentionPort`: expire_jobs, forget_expired, expired_at.
+- :class:`CallbacksPort`: claim_callbacks, callback_log, finish_callback.
+- :class:`WorkersPort`: register_worker, worker_heartbeat, unregister_worker,
+  live_workers.
+- :class:`MetricsPort`: job_tallies, queue_depth.
+
+:class:`JobStore` is all of them: what :func:`worker.store.open_store` returns and
+what the app, the pool and the dispatchers hold; a component that needs one role may
+ask for that role alone.  The values crossing the port live in
+:mod:`worker.store.records` (re-exported here).
+
+Behind the port, :class:`worker.store.sql.SqlJobStore` writes the logic once in
+portable SQL, one topic module a concern, each built on
+:class:`worker.store.connector.SqlConnector` (connections, transactions, statement
+helpers and the dialect hooks, declared once); the dialects
+(:class:`worker.store.sqlite.SqliteJobStore`,
+:class:`worker.store.postgres.PostgresJobStore`) override the hooks only.
+``tests/test_architecture_store.py`` checks that the roles together are the whole of
+what the store offers and what ``service/`` and ``worker/`` call, and that no topic
+module restates the connector.
 """
 
 from __future__ import annotations
 
 from collections.abc import Callable, Iterator, Mapping, Sequence
-from dataclasses import dataclass
 from datetime import datetime
 from typing import Any, Protocol
 
 from worker.contract import Artifact, ChildEnd, JobRecord, JobStatus
-from worker.store.records import ApiKey, CallbackClaim, JobTally, StoredArtifact, WorkerInfo
+from worker.store.records import (
+    ApiKey,
+    CallbackClaim,
+    Claim,
+    ClaimAttempt,
+    HeartbeatAck,
+    JobFilter,
+    JobPage,
+    JobTally,
+    NewJob,
+    QueueLimits,
+    StoredArtifact,
+    WorkerInfo,
+)
 
 __all__ = [
     "ApiKey",
     "CallbackClaim",
+    "CallbacksPort",
     "Claim",
     "ClaimAttempt",
     "HeartbeatAck",
@@ -25,121 +72,42 @@ __all__ = [
     "JobPage",
     "JobStore",
     "JobTally",
+    "JobsPort",
+    "KeysPort",
+    "LifecyclePort",
+    "MetricsPort",
     "NewJob",
     "QueueLimits",
+    "QueuePort",
+    "ResultsPort",
+    "RetentionPort",
     "StoredArtifact",
     "WorkerInfo",
+    "WorkersPort",
 ]
 
 
-#: A finished job's retention when nothing else is said (seconds; 7 days).
-DEFAULT_RETENTION_S = 604800.0
-
-
-@dataclass(frozen=True)
-class QueueLimits:
-    """The quotas a new job must fit, checked in the transaction that inserts it (None:
-    no such limit).  See :mod:`worker.store.quotas`."""
-
-    #: Jobs waiting in the whole queue.
-    max_queued: int | None = None
-    #: Jobs the owner may have waiting.
-    max_queued_per_owner: int | None = None
-    #: Submissions the owner may make per minute (a token bucket of this size).
-    submit_rate_per_min: int | None = None
-
-
-@dataclass(frozen=True)
-class NewJob:
-    """A job to create."""
-
-    process_id: str
-    inputs: Mapping[str, Any]
-    time_limit_s: float
-    max_attempts: int
-    idempotency_key: str | None = None
-    request_hash: str | None = None
-    #: The API key name submitting it ('' = anonymous); idempotency keys are per owner.
-    owner: str = ""
-    #: Whether it costs at most its process's ``sync_cost_limit`` (a cheap job, which
-    #: one worker slot prefers).
-    cheap: bool = False
-    #: Seconds the job and its files are kept once it has finished.
-    retention_s: float = DEFAULT_RETENTION_S
-    #: The quotas to check (none by default: the submission path sets them).
-    limits: QueueLimits = QueueLimits()
-    #: The job that created this one for itself (None: a client's job).  Such work
-    #: counts as its parent: quotas count only jobs without a parent.
-    parent_id: str | None = None
-
-
-@dataclass(frozen=True)
-class Claim:
-    """A job a worker claimed, with the token that fences its writes."""
-
-    job: JobRecord
-    lease_token: str
-
-
-@dataclass(frozen=True)
-class ClaimAttempt:
-    """The outcome of claiming one named job (a broker delivered its ID).
-
-    ``claim`` is set when this worker now runs it.  Otherwise ``status`` says why not
-    (None: no such job): finished or dismissed (drop the message); running under
-    another worker's live lease, which ends in ``retry_after_s`` seconds unless renewed;
-    or accepted but its owner runs as many jobs as it may (try again in
-    ``retry_after_s``).
-    """
-
-    claim: Claim | None
-    status: JobStatus | None
-    retry_after_s: float | None
-
-
-@dataclass(frozen=True)
-class HeartbeatAck:
-    """What a heartbeat learned: whether the attempt still owns the job."""
-
-    owner: bool
-    status: JobStatus | None
-
-
-@dataclass(frozen=True)
-class JobPage:
-    """One page of a job listing, newest first."""
-
-    jobs: Sequence[JobRecord]
-    next_cursor: str | None
-
-
-@dataclass(frozen=True)
-class JobFilter:
-    """Which jobs a listing selects; every criterion given must hold (None: any).
-
-    ``created_from`` and ``created_to`` bound the creation time, both inclusive, at the
-    microsecond the documents show.  A duration is ``finished - started``, or ``now -
-    started`` while running; a duration bound selects only jobs that have started and
-    are not back in the queue (accepted jobs have no duration)."""
-
-    statuses: frozenset[JobStatus] | None = None
-    process_ids: frozenset[str] | None = None
-    created_from: datetime | None = None
-    created_to: datetime | None = None
-    min_duration_s: float | None = None
-    max_duration_s: float | None = None
-    #: The children of this job (a study's chunks); None: jobs that are nobody's child.
-    parent_id: str | None = None
-
-
-class JobStore(Protocol):
-    """Persistent jobs.  Implementations: :class:`worker.store.sqlite.SqliteJobStore`."""
+class LifecyclePort(Protocol):
+    """The store itself: its schema, its health and its connections."""
 
     def initialise(self) -> None:
         """Create or migrate the schema."""
 
+    def schema_version(self) -> int: ...
+
     def ping(self) -> None:
         """Raise :class:`worker.errors.StoreUnavailable` unless the store answers."""
+
+    def check_storage(self) -> None:
+        """Raise :class:`worker.errors.StoreUnavailable` (or ``StorageFull``) unless the
+        store can take a write now: one try, no retry window (a readiness probe)."""
+
+    def close(self) -> None: ...
+
+
+class JobsPort(Protocol):
+    """Jobs as a client sees them: submit (quotas checked with the insert), read,
+    list, dismiss, and how the client asked for the results."""
 
     def create_job(self, new: NewJob) -> tuple[JobRecord, bool]:
         """Commit a new job; ``(job, created)``.  A known idempotency key (of the same
@@ -168,6 +136,10 @@ class JobStore(Protocol):
         """Jobs, newest first, ``limit`` at a time (``next_cursor`` continues); ``status``,
         ``process_id``, ``where`` and ``owner`` (one owner's jobs) narrow the selection."""
 
+    def dismiss(self, job_id: str, *, owner: str | None = None) -> JobRecord | None:
+        """Dismiss a job (a finished job's results are deleted); None if unknown, or
+        when ``owner`` is given and owns it not (then nothing changes)."""
+
     def set_request_options(
         self, job_id: str, presentation: Mapping[str, Any], subscriber: Mapping[str, Any] | None
     ) -> None:
@@ -179,19 +151,10 @@ class JobStore(Protocol):
     ) -> tuple[Mapping[str, Any] | None, Mapping[str, Any] | None]:
         """``(presentation, subscriber)`` kept with the job (None: none kept)."""
 
-    def claim_callbacks(self, lease_s: float, max_attempts: int, limit: int) -> list[CallbackClaim]:
-        """Record the callbacks that became due (the job started, succeeded or failed) and
-        claim up to ``limit`` of those not yet delivered, not claimed by another sender
-        under a live lease, and tried fewer than ``max_attempts`` times."""
 
-    def callback_log(self, job_id: str) -> list[dict[str, Any]]:
-        """The job's due callbacks: event, uri, attempts, delivered / gave_up (epoch s)."""
-
-    def finish_callback(
-        self, claim: CallbackClaim, delivered: bool, retry_after_s: float, max_attempts: int
-    ) -> bool:
-        """Record a send's outcome: delivered, or retry after ``retry_after_s`` (after
-        ``max_attempts`` tries, given up).  False if the claim was lost meanwhile."""
+class QueuePort(Protocol):
+    """The queue as workers and the dispatcher see it: claims, leases and the writes
+    an attempt fences with its token, fan-out, and the broker's bookkeeping."""
 
     def claim_next(
         self,
@@ -223,6 +186,18 @@ class JobStore(Protocol):
         """Requeue (or fail, when out of attempts) running jobs whose lease expired;
         returns the requeued job IDs."""
 
+    def heartbeat(self, job_id: str, lease_token: str, lease_s: float) -> HeartbeatAck:
+        """Extend the lease if the attempt still owns the job."""
+
+    def report_progress(
+        self, job_id: str, lease_token: str, percent: float, message: str
+    ) -> bool: ...
+
+    def fail(self, job_id: str, lease_token: str, error: Mapping[str, Any]) -> bool: ...
+
+    def expire_leases_of(self, worker_id: str) -> int:
+        """Expire the leases a (dead) worker holds so the jobs are retried at once."""
+
     def split(
         self,
         job_id: str,
@@ -238,9 +213,6 @@ class JobStore(Protocol):
     def children(self, job_id: str) -> list[ChildEnd]:
         """The job's children in the order they were made."""
 
-    def child_results(self, job_id: str) -> Iterator[tuple[ChildEnd, Mapping[str, Any] | None]]:
-        """Each child with its result document (None unless successful), in order."""
-
     def mark_dispatched(self, job_id: str) -> None:
         """Record that the job's ID was handed to the broker now."""
 
@@ -254,16 +226,9 @@ class JobStore(Protocol):
     def accepted_count(self, bound: int) -> int:
         """Accepted jobs (chunks included), counted up to ``bound``."""
 
-    def schema_version(self) -> int: ...
 
-    def close(self) -> None: ...
-
-    def heartbeat(self, job_id: str, lease_token: str, lease_s: float) -> HeartbeatAck:
-        """Extend the lease if the attempt still owns the job."""
-
-    def report_progress(
-        self, job_id: str, lease_token: str, percent: float, message: str
-    ) -> bool: ...
+class ResultsPort(Protocol):
+    """Results and artifacts: committed by a successful attempt, read by clients and parent jobs."""
 
     def complete(
         self,
@@ -276,16 +241,10 @@ class JobStore(Protocol):
         result and the status in one short fenced transaction.  False (and nothing
         committed) if the attempt lost the job."""
 
-    def fail(self, job_id: str, lease_token: str, error: Mapping[str, Any]) -> bool: ...
-
-    def expire_leases_of(self, worker_id: str) -> int:
-        """Expire the leases a (dead) worker holds so the jobs are retried at once."""
-
-    def dismiss(self, job_id: str, *, owner: str | None = None) -> JobRecord | None:
-        """Dismiss a job (a finished job's results are deleted); None if unknown, or
-        when ``owner`` is given and owns it not (then nothing changes)."""
-
     def get_result(self, job_id: str) -> Mapping[str, Any] | None: ...
+
+    def child_results(self, job_id: str) -> Iterator[tuple[ChildEnd, Mapping[str, Any] | None]]:
+        """Each child with its result document (None unless successful), in order."""
 
     def artifact(self, job_id: str, name: str) -> StoredArtifact | None:
         """A successful job's artifact metadata, by name."""
@@ -296,34 +255,9 @@ class JobStore(Protocol):
     def get_artifact(self, job_id: str, name: str) -> Artifact | None:
         """The whole artifact in memory (small files and tests; the API streams)."""
 
-    def check_storage(self) -> None:
-        """Raise :class:`worker.errors.StoreUnavailable` (or ``StorageFull``) unless the
-        store can take a write now: one try, no retry window (a readiness probe)."""
 
-    def register_worker(self, worker_id: str, host: str, pid: int) -> None: ...
-
-    def worker_heartbeat(self, worker_id: str) -> None: ...
-
-    def unregister_worker(self, worker_id: str) -> None: ...
-
-    def live_workers(self, within_s: float) -> list[WorkerInfo]: ...
-
-    def job_tallies(self) -> list[JobTally]:
-        """Every running count of job events (:mod:`worker.store.tallies`), in one query."""
-
-    def queue_depth(self) -> dict[tuple[str, JobStatus], int]:
-        """How many jobs are accepted and running, by process, in one query."""
-
-    def expire_jobs(self, limit: int) -> list[str]:
-        """Delete up to ``limit`` jobs whose retention ended, and their files, leaving a
-        tombstone of each (:mod:`worker.store.retention`); the deleted IDs."""
-
-    def forget_expired(self, limit: int) -> int:
-        """Delete up to ``limit`` tombstones past their grace period; how many."""
-
-    def expired_at(self, job_id: str, *, owner: str | None = None) -> datetime | None:
-        """When the job expired, if it did and its tombstone is kept (None otherwise, or
-        when ``owner`` is given and owned it not)."""
+class KeysPort(Protocol):
+    """API keys (the owners that quotas count) and the service-wide shared secrets."""
 
     def create_key(self, name: str, secret_hash: str, admin: bool) -> ApiKey | None:
         """Store a new key; None if the name is taken (revoked keys keep their names)."""
@@ -345,3 +279,74 @@ class JobStore(Protocol):
     def shared_secret(self, name: str, generate: Callable[[], str]) -> str:
         """The service-wide secret ``name``, made with ``generate`` by the first caller
         (every replica then reads the same)."""
+
+
+class RetentionPort(Protocol):
+    """Retention: finished jobs deleted when their time is up, a tombstone kept a while."""
+
+    def expire_jobs(self, limit: int) -> list[str]:
+        """Delete up to ``limit`` jobs whose retention ended, and their files, leaving a
+        tombstone of each (:mod:`worker.store.retention`); the deleted IDs."""
+
+    def forget_expired(self, limit: int) -> int:
+        """Delete up to ``limit`` tombstones past their grace period; how many."""
+
+    def expired_at(self, job_id: str, *, owner: str | None = None) -> datetime | None:
+        """When the job expired, if it did and its tombstone is kept (None otherwise, or
+        when ``owner`` is given and owned it not)."""
+
+
+class CallbacksPort(Protocol):
+    """The callbacks a job's subscriber asked for: claimed, sent and recorded."""
+
+    def claim_callbacks(self, lease_s: float, max_attempts: int, limit: int) -> list[CallbackClaim]:
+        """Record the callbacks that became due (the job started, succeeded or failed) and
+        claim up to ``limit`` of those not yet delivered, not claimed by another sender
+        under a live lease, and tried fewer than ``max_attempts`` times."""
+
+    def callback_log(self, job_id: str) -> list[dict[str, Any]]:
+        """The job's due callbacks: event, uri, attempts, delivered / gave_up (epoch s)."""
+
+    def finish_callback(
+        self, claim: CallbackClaim, delivered: bool, retry_after_s: float, max_attempts: int
+    ) -> bool:
+        """Record a send's outcome: delivered, or retry after ``retry_after_s`` (after
+        ``max_attempts`` tries, given up).  False if the claim was lost meanwhile."""
+
+
+class WorkersPort(Protocol):
+    """The workers that run jobs, as they register and beat."""
+
+    def register_worker(self, worker_id: str, host: str, pid: int) -> None: ...
+
+    def worker_heartbeat(self, worker_id: str) -> None: ...
+
+    def unregister_worker(self, worker_id: str) -> None: ...
+
+    def live_workers(self, within_s: float) -> list[WorkerInfo]: ...
+
+
+class MetricsPort(Protocol):
+    """Counts for the metrics endpoint, each in one query."""
+
+    def job_tallies(self) -> list[JobTally]:
+        """Every running count of job events (:mod:`worker.store.tallies`), in one query."""
+
+    def queue_depth(self) -> dict[tuple[str, JobStatus], int]:
+        """How many jobs are accepted and running, by process, in one query."""
+
+
+class JobStore(
+    LifecyclePort,
+    JobsPort,
+    QueuePort,
+    ResultsPort,
+    KeysPort,
+    RetentionPort,
+    CallbacksPort,
+    WorkersPort,
+    MetricsPort,
+    Protocol,
+):
+    """The whole port: every role above.  Implementations:
+    :class:`worker.store.sqlite.SqliteJobStore`, :class:`worker.store.postgres.PostgresJobStore`."""

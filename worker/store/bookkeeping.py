@@ -5,30 +5,19 @@ from __future__ import annotations
 
 import time
 from collections.abc import Sequence
-from contextlib import AbstractContextManager
-from typing import TYPE_CHECKING, Any
 
 from worker.contract import JobStatus
-from worker.store.base import WorkerInfo
+from worker.store.connector import SqlConnector
+from worker.store.records import WorkerInfo
 from worker.store.retry import retrying
 
 __all__ = ["Bookkeeping"]
 
-Conn = Any
 _ACCEPTED = JobStatus.ACCEPTED.value
 
 
-class Bookkeeping:
+class Bookkeeping(SqlConnector):
     """Dispatch and worker bookkeeping of :class:`worker.store.sql.SqlJobStore`."""
-
-    retry_s: float
-
-    if TYPE_CHECKING:
-
-        def _conn(self) -> Conn: ...
-        def _write(self) -> AbstractContextManager[Conn]: ...
-        def _exec(self, conn: Conn, query: str, params: Sequence[Any] = ()) -> Any: ...
-        def _all(self, conn: Conn, query: str, params: Sequence[Any] = ()) -> list[Any]: ...
 
     # -- dispatch bookkeeping ---------------------------------------------------------
     @retrying

@@ -13,17 +13,16 @@ from __future__ import annotations
 import json
 import time
 import uuid
-from collections.abc import Mapping, Sequence
-from contextlib import AbstractContextManager
-from typing import TYPE_CHECKING, Any
+from collections.abc import Mapping
+from typing import Any
 
 from worker.contract import JobStatus
-from worker.store.base import CallbackClaim
+from worker.store.connector import Conn, SqlConnector
+from worker.store.records import CallbackClaim
 from worker.store.retry import retrying
 
 __all__ = ["CALLBACK_EVENTS", "Callbacks"]
 
-Conn = Any
 
 #: Event -> the subscriber member naming its URI.
 CALLBACK_EVENTS: Mapping[str, str] = {
@@ -36,19 +35,8 @@ CALLBACK_EVENTS: Mapping[str, str] = {
 _SCAN = 500
 
 
-class Callbacks:
+class Callbacks(SqlConnector):
     """Request options and callbacks of :class:`worker.store.sql.SqlJobStore`."""
-
-    lock_clause: str
-    retry_s: float
-
-    if TYPE_CHECKING:
-
-        def _conn(self) -> Conn: ...
-        def _write(self) -> AbstractContextManager[Conn]: ...
-        def _exec(self, conn: Conn, query: str, params: Sequence[Any] = ()) -> Any: ...
-        def _one(self, conn: Conn, query: str, params: Sequence[Any] = ()) -> Any: ...
-        def _all(self, conn: Conn, query: str, params: Sequence[Any] = ()) -> list[Any]: ...
 
     @retrying
     def set_request_options(

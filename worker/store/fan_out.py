@@ -20,17 +20,15 @@ import json
 import time
 import uuid
 from collections.abc import Iterator, Mapping, Sequence
-from contextlib import AbstractContextManager
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
 from worker.contract import ChildEnd, JobStatus
-from worker.store.base import NewJob
+from worker.store.connector import Conn, Row, SqlConnector
+from worker.store.records import NewJob
 from worker.store.retry import retrying
 
 __all__ = ["FanOut"]
 
-Conn = Any
-Row = Any
 
 _RUNNING = JobStatus.RUNNING.value
 _ACCEPTED = JobStatus.ACCEPTED.value
@@ -39,21 +37,8 @@ _UNFINISHED = (_ACCEPTED, _RUNNING)
 CHILD_PAGE = 200
 
 
-class FanOut:
+class FanOut(SqlConnector):
     """The fan-out half of :class:`worker.store.sql.SqlJobStore`."""
-
-    lock_clause: str
-
-    if TYPE_CHECKING:
-
-        def _conn(self) -> Conn: ...
-        def _write(self) -> AbstractContextManager[Conn]: ...
-        def _exec(self, conn: Conn, query: str, params: Sequence[Any] = ()) -> Any: ...
-        def _one(self, conn: Conn, query: str, params: Sequence[Any] = ()) -> Any: ...
-        def _all(self, conn: Conn, query: str, params: Sequence[Any] = ()) -> list[Any]: ...
-        def _sql(self, query: str) -> str: ...
-        def _tally_all(self, conn: Conn, events: Sequence[tuple[str, str, str, float]]) -> None: ...
-        def _tally_finish(self, conn: Conn, row: Row, status: JobStatus, now: float) -> None: ...
 
     @retrying
     def split(

@@ -6,7 +6,7 @@ from datetime import UTC, datetime, timedelta
 from typing import Any
 
 from worker.contract import JobStatus
-from worker.store.base import JobFilter
+from worker.store.records import JobFilter
 
 __all__ = ["filter_clauses"]
 

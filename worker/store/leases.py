@@ -7,48 +7,22 @@ from __future__ import annotations
 import json
 import time
 import uuid
-from collections.abc import Mapping, Sequence
-from contextlib import AbstractContextManager
-from typing import TYPE_CHECKING, Any
+from collections.abc import Mapping
+from typing import Any
 
-from worker.contract import JobRecord, JobStatus
-from worker.store.base import Claim, HeartbeatAck
+from worker.contract import JobStatus
+from worker.store.connector import Conn, Row, SqlConnector
+from worker.store.records import Claim, HeartbeatAck
 from worker.store.retry import retrying
 
 __all__ = ["Leases"]
 
-Conn = Any
-Row = Any
 _RUNNING = JobStatus.RUNNING.value
 _ACCEPTED = JobStatus.ACCEPTED.value
 
 
-class Leases:
+class Leases(SqlConnector):
     """The lease half of :class:`worker.store.sql.SqlJobStore`."""
-
-    lock_clause: str
-    retry_s: float
-
-    if TYPE_CHECKING:
-
-        def _conn(self) -> Conn: ...
-        def _write(self) -> AbstractContextManager[Conn]: ...
-        def _exec(self, conn: Conn, query: str, params: Sequence[Any] = ()) -> Any: ...
-        def _one(self, conn: Conn, query: str, params: Sequence[Any] = ()) -> Any: ...
-        def _all(self, conn: Conn, query: str, params: Sequence[Any] = ()) -> list[Any]: ...
-        def _job_row(self, conn: Conn, job_id: str, lock: bool = False) -> Row | None: ...
-        def _record(self, conn: Conn, row: Row) -> JobRecord: ...
-        def _discard_artifact_data(self, job_id: str, keep_attempt: int | None = None) -> None: ...
-        def _tally_claim(self, conn: Conn, job_id: str, now: float, row: Row = None) -> None: ...
-        def _tally_finish(self, conn: Conn, row: Row, status: JobStatus, now: float) -> None: ...
-        def _child_ended(
-            self,
-            conn: Conn,
-            child_id: str,
-            status: JobStatus,
-            error: Mapping[str, Any] | None,
-            now: float,
-        ) -> str | None: ...
 
     # -- leases -----------------------------------------------------------------------
     def _reap(self, conn: Conn, row: Row, now: float) -> JobStatus:

@@ -12,8 +12,6 @@ transaction or a connection held for a whole download.  Sessions set
 
 from __future__ import annotations
 
-import contextlib
-import threading
 from collections.abc import Iterator, Mapping
 from contextlib import contextmanager
 from typing import Any, ClassVar
@@ -21,6 +19,7 @@ from typing import Any, ClassVar
 from worker.contract import JobStatus
 from worker.errors import StoreUnavailable
 from worker.store.artifact_files import CHUNK_BYTES
+from worker.store.connector import ThreadConnections
 from worker.store.postgres_quick import QuickStatements
 from worker.store.retry import Fault, Outage, retrying, single_try
 from worker.store.sql import SqlJobStore
@@ -68,9 +67,7 @@ class PostgresJobStore(QuickStatements, SqlJobStore):
         self.url = url
         self.retry_s = retry_s
         self.outage = Outage()
-        self._local = threading.local()
-        self._opened: list[Any] = []
-        self._opened_lock = threading.Lock()
+        self.connections = ThreadConnections()
 
     @property
     def location(self) -> str:
@@ -83,29 +80,17 @@ class PostgresJobStore(QuickStatements, SqlJobStore):
         import psycopg
         from psycopg.rows import dict_row
 
-        conn = getattr(self._local, "conn", None)
+        conn = self.connections.current()
         if conn is not None and (conn.closed or conn.broken):
-            self._drop_conn()
+            self.connections.drop()
             conn = None
         if conn is None:
             conn = psycopg.connect(
                 self.url, autocommit=True, row_factory=dict_row, connect_timeout=connect_timeout_s
             )
             conn.execute(f"SET idle_in_transaction_session_timeout = {IDLE_IN_TRANSACTION_MS}")
-            self._local.conn = conn
-            with self._opened_lock:
-                self._opened.append(conn)
+            self.connections.keep(conn)
         return conn
-
-    def _drop_conn(self) -> None:
-        conn = getattr(self._local, "conn", None)
-        self._local.conn = None
-        if conn is not None:
-            with self._opened_lock:
-                if conn in self._opened:
-                    self._opened.remove(conn)
-            with contextlib.suppress(Exception):  # already dead
-                conn.close()
 
     @contextmanager
     def _write(self) -> Iterator[Any]:
@@ -141,17 +126,13 @@ class PostgresJobStore(QuickStatements, SqlJobStore):
         return Fault.OTHER
 
     def after_fault(self, fault: Fault) -> None:
-        conn = getattr(self._local, "conn", None)
+        conn = self.connections.current()
         if conn is not None and (conn.closed or conn.broken or fault is not Fault.TRANSIENT):
-            self._drop_conn()
+            self.connections.drop()
 
     def close(self) -> None:
         """Close every connection this store opened, in any thread."""
-        with self._opened_lock:
-            opened, self._opened = self._opened, []
-        for conn in opened:
-            conn.close()
-        self._local = threading.local()
+        self.connections.close_all()
 
     @retrying
     def ping(self) -> None:

@@ -29,16 +29,14 @@ import hashlib
 import time
 import uuid
 from collections.abc import Sequence
-from typing import TYPE_CHECKING, Any
 
-from worker.contract import Artifact, JobRecord, JobStatus
-from worker.store.base import Claim
+from worker.contract import Artifact, JobStatus
+from worker.store.connector import SqlConnector
+from worker.store.records import Claim
 from worker.store.tallies import DURATION_BUCKETS, QUEUE_WAIT_BUCKETS, bound_label
 
 __all__ = ["QuickStatements", "bucket_case"]
 
-Conn = Any
-Row = Any
 
 _ACCEPTED = JobStatus.ACCEPTED.value
 _RUNNING = JobStatus.RUNNING.value
@@ -136,14 +134,9 @@ SELECT target.status, target.attempts, target.parent_id,
 FROM target"""
 
 
-class QuickStatements:
+class QuickStatements(SqlConnector):
     """The one-statement claim and completion of
     :class:`worker.store.postgres.PostgresJobStore`."""
-
-    if TYPE_CHECKING:
-
-        def _conn(self) -> Conn: ...
-        def _record(self, conn: Conn, row: Row) -> JobRecord: ...
 
     def _quick_claim(
         self, worker_id: str, lease_s: float, cheap_only: bool, max_running: int | None

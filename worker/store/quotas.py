@@ -28,19 +28,15 @@ refused submission changes nothing (the transaction rolls back).
 
 from __future__ import annotations
 
-from collections.abc import Sequence
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
 from worker.contract import JobStatus
 from worker.errors import QueueFull, QuotaExceeded, RateLimited
-from worker.store.base import NewJob
-
-if TYPE_CHECKING:
-    from contextlib import AbstractContextManager
+from worker.store.connector import Conn, SqlConnector
+from worker.store.records import NewJob
 
 __all__ = ["QUEUE_FULL_RETRY_S", "QUOTA_RETRY_S", "Quotas"]
 
-Conn = Any
 
 #: ``Retry-After`` hints (seconds): an owner's queue frees as its jobs start; the whole
 #: queue as every owner's do.
@@ -50,21 +46,8 @@ QUEUE_FULL_RETRY_S = 10.0
 _ACCEPTED = JobStatus.ACCEPTED.value
 
 
-class Quotas:
+class Quotas(SqlConnector):
     """The quota half of :class:`worker.store.sql.SqlJobStore`."""
-
-    lock_clause: str
-
-    if TYPE_CHECKING:
-
-        def _conn(self) -> Conn: ...
-        def _write(self) -> AbstractContextManager[Conn]: ...
-        def _exec(self, conn: Conn, query: str, params: Sequence[Any] = ()) -> Any: ...
-        def _one(self, conn: Conn, query: str, params: Sequence[Any] = ()) -> Any: ...
-
-    def _lock_submissions(self, conn: Conn) -> None:
-        """Serialise submissions until the transaction ends (a dialect hook: a no-op
-        where the transaction already holds the write lock)."""
 
     def _admit(self, conn: Conn, new: NewJob, now: float) -> None:
         """Raise the quota error ``new`` meets; otherwise take its submission token.

@@ -1,14 +1,33 @@
-"""What the job store keeps beside jobs, as it hands them out: a claimed callback, a
-committed artifact's index entry, an API key, a running tally and a registered worker.
-(:mod:`worker.store.base` re-exports them with the store's interface.)"""
+"""The values that cross the job store's port: what a caller hands in (a new job, its
+queue limits, a listing filter) and what the store hands out (a claim, a heartbeat's
+answer, a page of jobs, a claimed callback, a committed artifact's index entry, an API
+key, a running tally and a registered worker).  (:mod:`worker.store.base` re-exports
+them with the store's interface.)"""
 
 from __future__ import annotations
 
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
+from datetime import datetime
+from typing import Any
 
-from worker.contract import ArtifactInfo
+from worker.contract import ArtifactInfo, JobRecord, JobStatus
 
-__all__ = ["ApiKey", "CallbackClaim", "JobTally", "StoredArtifact", "WorkerInfo"]
+__all__ = [
+    "DEFAULT_RETENTION_S",
+    "ApiKey",
+    "CallbackClaim",
+    "Claim",
+    "ClaimAttempt",
+    "HeartbeatAck",
+    "JobFilter",
+    "JobPage",
+    "JobTally",
+    "NewJob",
+    "QueueLimits",
+    "StoredArtifact",
+    "WorkerInfo",
+]
 
 
 @dataclass(frozen=True)
@@ -70,3 +89,103 @@ class WorkerInfo:
     pid: int
     started: float
     heartbeat: float
+
+
+#: A finished job's retention when nothing else is said (seconds; 7 days).
+DEFAULT_RETENTION_S = 604800.0
+
+
+@dataclass(frozen=True)
+class QueueLimits:
+    """The quotas a new job must fit, checked in the transaction that inserts it (None:
+    no such limit).  See :mod:`worker.store.quotas`."""
+
+    #: Jobs waiting in the whole queue.
+    max_queued: int | None = None
+    #: Jobs the owner may have waiting.
+    max_queued_per_owner: int | None = None
+    #: Submissions the owner may make per minute (a token bucket of this size).
+    submit_rate_per_min: int | None = None
+
+
+@dataclass(frozen=True)
+class NewJob:
+    """A job to create."""
+
+    process_id: str
+    inputs: Mapping[str, Any]
+    time_limit_s: float
+    max_attempts: int
+    idempotency_key: str | None = None
+    request_hash: str | None = None
+    #: The API key name submitting it ('' = anonymous); idempotency keys are per owner.
+    owner: str = ""
+    #: Whether it costs at most its process's ``sync_cost_limit`` (a cheap job, which
+    #: one worker slot prefers).
+    cheap: bool = False
+    #: Seconds the job and its files are kept once it has finished.
+    retention_s: float = DEFAULT_RETENTION_S
+    #: The quotas to check (none by default: the submission path sets them).
+    limits: QueueLimits = QueueLimits()
+    #: The job that created this one for itself (None: a client's job).  Such work
+    #: counts as its parent: quotas count only jobs without a parent.
+    parent_id: str | None = None
+
+
+@dataclass(frozen=True)
+class Claim:
+    """A job a worker claimed, with the token that fences its writes."""
+
+    job: JobRecord
+    lease_token: str
+
+
+@dataclass(frozen=True)
+class ClaimAttempt:
+    """The outcome of claiming one named job (a broker delivered its ID).
+
+    ``claim`` is set when this worker now runs it.  Otherwise ``status`` says why not
+    (None: no such job): finished or dismissed (drop the message); running under
+    another worker's live lease, which ends in ``retry_after_s`` seconds unless renewed;
+    or accepted but its owner runs as many jobs as it may (try again in
+    ``retry_after_s``).
+    """
+
+    claim: Claim | None
+    status: JobStatus | None
+    retry_after_s: float | None
+
+
+@dataclass(frozen=True)
+class HeartbeatAck:
+    """What a heartbeat learned: whether the attempt still owns the job."""
+
+    owner: bool
+    status: JobStatus | None
+
+
+@dataclass(frozen=True)
+class JobPage:
+    """One page of a job listing, newest first."""
+
+    jobs: Sequence[JobRecord]
+    next_cursor: str | None
+
+
+@dataclass(frozen=True)
+class JobFilter:
+    """Which jobs a listing selects; every criterion given must hold (None: any).
+
+    ``created_from`` and ``created_to`` bound the creation time, both inclusive, at the
+    microsecond the documents show.  A duration is ``finished - started``, or ``now -
+    started`` while running; a duration bound selects only jobs that have started and
+    are not back in the queue (accepted jobs have no duration)."""
+
+    statuses: frozenset[JobStatus] | None = None
+    process_ids: frozenset[str] | None = None
+    created_from: datetime | None = None
+    created_to: datetime | None = None
+    min_duration_s: float | None = None
+    max_duration_s: float | None = None
+    #: The children of this job (a study's chunks); None: jobs that are nobody's child.
+    parent_id: str | None = None

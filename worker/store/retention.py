@@ -20,37 +20,20 @@ learns what happened, and tombstones stay bounded.  Tally counts are not touched
 from __future__ import annotations
 
 import time
-from collections.abc import Sequence
 from datetime import UTC, datetime
-from typing import TYPE_CHECKING, Any
 
+from worker.store.connector import SqlConnector
 from worker.store.retry import retrying
-
-if TYPE_CHECKING:
-    from contextlib import AbstractContextManager
 
 __all__ = ["MAX_GRACE_S", "Retention"]
 
-Conn = Any
 
 #: The longest an expired job's tombstone is kept (s): 410 that long, then 404.
 MAX_GRACE_S = 86400.0
 
 
-class Retention:
+class Retention(SqlConnector):
     """The retention half of :class:`worker.store.sql.SqlJobStore`."""
-
-    lock_clause: str
-    retry_s: float
-
-    if TYPE_CHECKING:
-
-        def _conn(self) -> Conn: ...
-        def _write(self) -> AbstractContextManager[Conn]: ...
-        def _exec(self, conn: Conn, query: str, params: Sequence[Any] = ()) -> Any: ...
-        def _one(self, conn: Conn, query: str, params: Sequence[Any] = ()) -> Any: ...
-        def _all(self, conn: Conn, query: str, params: Sequence[Any] = ()) -> list[Any]: ...
-        def _drop_artifact_data(self, job_id: str, keep_attempt: int | None) -> None: ...
 
     @retrying
     def expire_jobs(self, limit: int) -> list[str]:

@@ -23,20 +23,14 @@ different jobs; SQLite: the write lock) and fences its writes with a lease token
 from __future__ import annotations
 
 import time
-from collections.abc import Sequence
-from typing import TYPE_CHECKING, Any
 
 from worker.contract import JobStatus
-from worker.store.base import Claim, ClaimAttempt
+from worker.store.connector import Conn, SqlConnector
+from worker.store.records import Claim, ClaimAttempt
 from worker.store.retry import retrying
-
-if TYPE_CHECKING:
-    from contextlib import AbstractContextManager
 
 __all__ = ["CAPPED_RETRY_S", "Scheduling"]
 
-Conn = Any
-Row = Any
 
 #: When a delivery whose job waits behind its owner's running cap tries again (s).
 CAPPED_RETRY_S = 2.0
@@ -45,25 +39,8 @@ _RUNNING = JobStatus.RUNNING.value
 _ACCEPTED = JobStatus.ACCEPTED.value
 
 
-class Scheduling:
+class Scheduling(SqlConnector):
     """The claim half of :class:`worker.store.sql.SqlJobStore`."""
-
-    lock_clause: str
-    retry_s: float
-
-    if TYPE_CHECKING:
-
-        def _write(self) -> AbstractContextManager[Conn]: ...
-        def _batch(self) -> AbstractContextManager[Conn]: ...
-        def _exec(self, conn: Conn, query: str, params: Sequence[Any] = ()) -> Any: ...
-        def _one(self, conn: Conn, query: str, params: Sequence[Any] = ()) -> Any: ...
-        def _all(self, conn: Conn, query: str, params: Sequence[Any] = ()) -> list[Any]: ...
-        def _job_row(self, conn: Conn, job_id: str, lock: bool = False) -> Row | None: ...
-        def _take(
-            self, conn: Conn, job_id: str, worker_id: str, lease_s: float, before: Row = None
-        ) -> Claim: ...
-        def _reap(self, conn: Conn, row: Row, now: float) -> JobStatus: ...
-        def reap_expired(self) -> list[str]: ...
 
     @retrying
     def claim_next(

@@ -1,6 +1,8 @@
 """The job store's logic, written once in portable SQL for SQLite and PostgreSQL.
 
-A dialect subclass supplies connections, transactions, fault classification and where
+Each topic class below is built on :class:`worker.store.connector.SqlConnector`, which
+declares the connection, transaction and statement helpers once; a dialect subclass
+overrides its hooks: connections, transactions, fault classification and where
 artifact bytes live (:class:`worker.store.sqlite.SqliteJobStore`,
 :class:`worker.store.postgres.PostgresJobStore`).  Queries use ``?`` placeholders;
 every write is one short transaction, and the rows a decision depends on are locked
@@ -23,31 +25,28 @@ import re
 import time
 import uuid
 from collections.abc import Mapping, Sequence
-from contextlib import AbstractContextManager
 from datetime import UTC, datetime
-from typing import Any, ClassVar
+from typing import Any
 
 from worker.contract import ArtifactInfo, JobRecord, JobStatus
 from worker.errors import IdempotencyConflict
 from worker.store.api_keys import ApiKeys
 from worker.store.artifact_index import ArtifactIndex
-from worker.store.base import JobFilter, JobPage, NewJob
 from worker.store.bookkeeping import Bookkeeping
 from worker.store.callbacks import Callbacks
+from worker.store.connector import Conn, Row
 from worker.store.fan_out import FanOut
 from worker.store.job_listing import filter_clauses
 from worker.store.leases import Leases
 from worker.store.quotas import Quotas
+from worker.store.records import JobFilter, JobPage, NewJob
 from worker.store.retention import Retention
-from worker.store.retry import Fault, Outage, retrying
+from worker.store.retry import retrying
 from worker.store.scheduling import Scheduling
 from worker.store.schema import MIGRATIONS
 from worker.store.tallies import Tallies
 
 __all__ = ["SqlJobStore", "decode_cursor", "encode_cursor"]
-
-Row = Any
-Conn = Any
 
 _RUNNING = JobStatus.RUNNING.value
 _ACCEPTED = JobStatus.ACCEPTED.value
@@ -93,73 +92,6 @@ class SqlJobStore(
     Tallies,
 ):
     """A :class:`worker.store.base.JobStore` over a DB-API connection."""
-
-    #: Appended to a SELECT whose rows the transaction goes on to change.
-    lock_clause = ""
-    #: Type names substituted into the migrations' ``{placeholders}``.
-    ddl_types: ClassVar[Mapping[str, str]] = {}
-    #: How long (seconds) a call keeps retrying transient faults before it gives up.
-    retry_s: float = 5.0
-    #: Whether the store is known to be down (set by each dialect's constructor).
-    outage: Outage
-
-    # -- dialect hooks ----------------------------------------------------------------
-    def _conn(self) -> Conn:
-        """This thread's connection (autocommit; transactions are explicit)."""
-        raise NotImplementedError  # pragma: no cover - abstract
-
-    def _write(self) -> AbstractContextManager[Conn]:
-        """A write transaction yielding the connection."""
-        raise NotImplementedError  # pragma: no cover - abstract
-
-    def _batch(self) -> AbstractContextManager[Conn]:
-        """A write transaction whose statements may travel together: each result
-        arrives when it is fetched (PostgreSQL's pipeline mode), so a statement whose
-        result is not read costs no round trip of its own.  Only for code that reads
-        nothing but fetched rows (not ``rowcount``).  Elsewhere, :meth:`_write`."""
-        return self._write()
-
-    def _lock_schema(self, conn: Conn) -> None:
-        """Serialise concurrent migrations (a no-op where the transaction does it)."""
-
-    def _sql(self, query: str) -> str:
-        return query
-
-    def classify(self, exc: BaseException) -> Fault:
-        """What a database exception means (see :mod:`worker.store.retry`)."""
-        return Fault.OTHER
-
-    def after_fault(self, fault: Fault) -> None:
-        """Drop what a fault may have broken (a dialect closes a dead connection)."""
-
-    def close(self) -> None:
-        """Close this thread's connection."""
-
-    @property
-    def location(self) -> str:
-        return type(self).__name__
-
-    # -- helpers ----------------------------------------------------------------------
-    def _exec(self, conn: Conn, query: str, params: Sequence[Any] = ()) -> Any:
-        cur = conn.cursor()
-        cur.execute(self._sql(query), tuple(params))
-        return cur
-
-    def _one(self, conn: Conn, query: str, params: Sequence[Any] = ()) -> Row | None:
-        return self._exec(conn, query, params).fetchone()
-
-    def _all(self, conn: Conn, query: str, params: Sequence[Any] = ()) -> list[Row]:
-        return list(self._exec(conn, query, params).fetchall())
-
-    def _job_row(
-        self, conn: Conn, job_id: str, lock: bool = False, owner: str | None = None
-    ) -> Row | None:
-        suffix = self.lock_clause if lock else ""
-        if owner is None:
-            return self._one(conn, f"SELECT * FROM jobs WHERE job_id = ?{suffix}", (job_id,))
-        return self._one(
-            conn, f"SELECT * FROM jobs WHERE job_id = ? AND owner = ?{suffix}", (job_id, owner)
-        )
 
     # -- schema -----------------------------------------------------------------------
     @retrying

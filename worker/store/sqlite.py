@@ -10,13 +10,13 @@ for (about a second per try) and retried for ``retry_s`` in all; then the call r
 from __future__ import annotations
 
 import sqlite3
-import threading
 from collections.abc import Iterator, Mapping
-from contextlib import contextmanager, suppress
+from contextlib import contextmanager
 from pathlib import Path
 from typing import Any, ClassVar
 
 from worker.store.artifact_files import FULL_ERRNOS, ArtifactFiles
+from worker.store.connector import ThreadConnections
 from worker.store.retry import Fault, Outage, retrying, single_try
 from worker.store.sql import SqlJobStore
 
@@ -63,9 +63,7 @@ class SqliteJobStore(SqlJobStore):
         self.retry_s = retry_s
         self.outage = Outage()
         self.files = ArtifactFiles(self.path.parent / "artifacts")
-        self._local = threading.local()
-        self._opened: list[Any] = []
-        self._opened_lock = threading.Lock()
+        self.connections = ThreadConnections()
 
     @classmethod
     def from_url(cls, url: str, retry_s: float = 5.0) -> SqliteJobStore:
@@ -79,7 +77,7 @@ class SqliteJobStore(SqlJobStore):
         return f"sqlite:///{self.path}"
 
     def _conn(self) -> sqlite3.Connection:
-        conn: sqlite3.Connection | None = getattr(self._local, "conn", None)
+        conn: sqlite3.Connection | None = self.connections.current()
         if conn is None:
             self.path.parent.mkdir(parents=True, exist_ok=True)
             conn = sqlite3.connect(
@@ -96,20 +94,8 @@ class SqliteJobStore(SqlJobStore):
             except BaseException:
                 conn.close()
                 raise
-            self._local.conn = conn
-            with self._opened_lock:
-                self._opened.append(conn)
+            self.connections.keep(conn)
         return conn
-
-    def _drop_conn(self) -> None:
-        conn: sqlite3.Connection | None = getattr(self._local, "conn", None)
-        self._local.conn = None
-        if conn is not None:
-            with self._opened_lock:
-                if conn in self._opened:
-                    self._opened.remove(conn)
-            with suppress(sqlite3.Error):
-                conn.close()
 
     @contextmanager
     def _write(self) -> Iterator[sqlite3.Connection]:
@@ -121,7 +107,7 @@ class SqliteJobStore(SqlJobStore):
             try:
                 conn.execute("ROLLBACK")
             except sqlite3.Error:  # (disk full, I/O error): a fresh connection is clean
-                self._drop_conn()
+                self.connections.drop()
             raise
         else:
             try:
@@ -130,7 +116,7 @@ class SqliteJobStore(SqlJobStore):
                 try:
                     conn.execute("ROLLBACK")
                 except sqlite3.Error:
-                    self._drop_conn()
+                    self.connections.drop()
                 raise
 
     def classify(self, exc: BaseException) -> Fault:
@@ -153,15 +139,11 @@ class SqliteJobStore(SqlJobStore):
 
     def after_fault(self, fault: Fault) -> None:
         if fault is not Fault.TRANSIENT:
-            self._drop_conn()
+            self.connections.drop()
 
     def close(self) -> None:
         """Close every connection this store opened, in any thread."""
-        with self._opened_lock:
-            opened, self._opened = self._opened, []
-        for conn in opened:
-            conn.close()
-        self._local = threading.local()
+        self.connections.close_all()
 
     @retrying
     def ping(self) -> None:

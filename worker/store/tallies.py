@@ -28,11 +28,10 @@ from __future__ import annotations
 import bisect
 import math
 from collections.abc import Sequence
-from contextlib import AbstractContextManager
-from typing import TYPE_CHECKING, Any
 
 from worker.contract import JobStatus
-from worker.store.base import JobTally
+from worker.store.connector import Conn, Row, SqlConnector
+from worker.store.records import JobTally
 from worker.store.retry import retrying
 
 __all__ = [
@@ -44,8 +43,6 @@ __all__ = [
     "label_bound",
 ]
 
-Conn = Any
-Row = Any
 
 #: Upper bounds (seconds) of the job-duration buckets (``+Inf`` follows).
 DURATION_BUCKETS = (0.1, 0.25, 0.5, 1.0, 2.5, 5.0, 10.0, 30.0, 60.0, 120.0, 300.0,
@@ -74,18 +71,8 @@ def label_bound(label: str) -> float:
     return math.inf if label == "+Inf" else float(label)
 
 
-class Tallies:
+class Tallies(SqlConnector):
     """The tally half of :class:`worker.store.sql.SqlJobStore`."""
-
-    retry_s: float
-
-    if TYPE_CHECKING:
-
-        def _conn(self) -> Conn: ...
-        def _write(self) -> AbstractContextManager[Conn]: ...
-        def _exec(self, conn: Conn, query: str, params: Sequence[Any] = ()) -> Any: ...
-        def _one(self, conn: Conn, query: str, params: Sequence[Any] = ()) -> Any: ...
-        def _all(self, conn: Conn, query: str, params: Sequence[Any] = ()) -> list[Any]: ...
 
     # -- writing (inside the transaction of the event) ----------------------------------
     def _tally(
