@@ -20,7 +20,7 @@ from worker.dispatch import Dispatcher
 from worker.processes import ProcessRegistry
 from worker.settings import WorkerSettings
 from worker.store.base import JobStore
-from worker.submission import submit, synchronous_allowed
+from worker.submission import submit_request
 
 __all__ = ["RETENTION_FIELD", "check_retention", "submit_job", "wait_while_connected"]
 
@@ -60,14 +60,14 @@ def submit_job(
     """Submit a job owned by ``owner``, kept ``retention_s`` once finished (None: the
     service's retention) (blocking store work, run in the threadpool); ``(job, created,
     sync)``: ``sync`` when the client asked for a synchronous answer and the process
-    allows one for these inputs (its ``sync_cost_limit``)."""
+    allows one for these inputs (its ``sync_cost_limit``, as the submission priced
+    them: the inputs are validated and priced once)."""
     check_retention(settings, retention_s)
-    job, created = submit(
+    submission = submit_request(
         store, registry, settings, process_id, inputs, idempotency_key, dispatcher, owner,
         retention_s,
     )  # fmt: skip
-    synchronous = wants_sync and synchronous_allowed(registry, process_id, inputs)
-    return job, created, synchronous
+    return submission.job, submission.created, wants_sync and submission.cheap
 
 
 async def wait_while_connected(

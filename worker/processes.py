@@ -165,6 +165,12 @@ class ProcessDefinition:
     #: The batched evaluation a design study uses for the result paths it covers
     #: (:mod:`worker.study_kernels`); None: studies of this process run per design.
     study_kernel: StudyKernel | None = None
+    #: Measured seconds of one job per unit of ``cost`` (on the reference machine,
+    #: plots off), and the seconds a job takes whatever its cost: a design study run per
+    #: design cuts its designs into chunks of about a second by these, from its inputs
+    #: alone, so that a re-run splits the same way (:mod:`worker.studies.chunking`).
+    seconds_per_cost: float = 1e-6
+    seconds_per_run: float = 1e-3
 
     def time_limit_for(self, inputs: Any) -> float:
         """The time limit of one attempt of a job with these validated inputs."""

@@ -10,6 +10,7 @@ whole queue.
 from __future__ import annotations
 
 from collections.abc import Mapping
+from dataclasses import dataclass
 from typing import Any
 
 from worker.contract import JobRecord
@@ -22,14 +23,26 @@ from worker.settings import WorkerSettings
 from worker.store.base import JobStore, NewJob, QueueLimits
 
 __all__ = [
+    "Submission",
     "field_errors",
     "field_path",
     "queue_limits",
     "request_hash",
     "submit",
-    "synchronous_allowed",
+    "submit_request",
     "validate_inputs",
 ]
+
+
+@dataclass(frozen=True)
+class Submission:
+    """A committed job, whether this request created it (not an idempotent replay), and
+    whether it is cheap: it costs at most its process's ``sync_cost_limit``, so the
+    request may be answered synchronously (priced once, with the job's validation)."""
+
+    job: JobRecord
+    created: bool
+    cheap: bool
 
 
 def queue_limits(settings: WorkerSettings, owner: str) -> QueueLimits:
@@ -55,10 +68,30 @@ def submit(
     owner: str = "",
     retention_s: float | None = None,
 ) -> tuple[JobRecord, bool]:
+    """:func:`submit_request`, answering ``(job, created)``."""
+    submission = submit_request(
+        store, registry, settings, process_id, raw_inputs, idempotency_key, dispatcher, owner,
+        retention_s,
+    )  # fmt: skip
+    return submission.job, submission.created
+
+
+def submit_request(
+    store: JobStore,
+    registry: ProcessRegistry,
+    settings: WorkerSettings,
+    process_id: str,
+    raw_inputs: Mapping[str, Any],
+    idempotency_key: str | None = None,
+    dispatcher: Dispatcher | None = None,
+    owner: str = "",
+    retention_s: float | None = None,
+) -> Submission:
     """Validate, check the cost limit, commit a job owned by ``owner`` (an API key's
-    name; '' = anonymous) within its quotas, then dispatch it; ``(job, created)``.
-    The finished job is kept ``retention_s`` seconds (at most, and by default,
-    ``settings.result_ttl_s``; the caller checks a requested value).
+    name; '' = anonymous) within its quotas, then dispatch it; the inputs are validated
+    and priced once, here, whatever the request's way of answering.  The finished job
+    is kept ``retention_s`` seconds (at most, and by default, ``settings.result_ttl_s``;
+    the caller checks a requested value).
 
     The job is committed before it is dispatched, so a broker outage loses nothing (the
     sweeper sends it later); a replayed idempotent request is not dispatched again.  An
@@ -83,6 +116,7 @@ def submit(
         if problems:
             raise InvalidInputs(problems)
     stored_inputs = inputs.model_dump(mode="json")
+    cheap = definition.sync_cost_limit > 0 and cost <= definition.sync_cost_limit
     new = NewJob(
         process_id=process_id,
         inputs=stored_inputs,
@@ -91,20 +125,11 @@ def submit(
         idempotency_key=idempotency_key,
         request_hash=request_hash(process_id, stored_inputs) if idempotency_key else None,
         owner=owner,
-        cheap=definition.sync_cost_limit > 0 and cost <= definition.sync_cost_limit,
+        cheap=cheap,
         retention_s=min(retention_s or settings.result_ttl_s, settings.result_ttl_s),
         limits=queue_limits(settings, owner),
     )
     job, created = store.create_job(new)
     if created and dispatcher is not None:
         dispatcher.dispatch(job.job_id, job.time_limit_s)
-    return job, created
-
-
-def synchronous_allowed(registry: ProcessRegistry, process_id: str, raw: Mapping[str, Any]) -> bool:
-    """Whether a request may be answered synchronously: the process allows it and the
-    request's cost is within the process's ``sync_cost_limit``."""
-    definition = registry.get(process_id)
-    if definition is None or not definition.sync_cost_limit:
-        return False
-    return definition.cost(validate_inputs(definition, raw)) <= definition.sync_cost_limit
+    return Submission(job, created, cheap)

@@ -35,7 +35,7 @@ from worker.processes import (
 )
 from worker.result_paths import declared_steps
 from worker.studies.chunk import ChunkSpec, run_chunk, target_of
-from worker.studies.chunking import chunk_inputs
+from worker.studies.chunking import chunk_inputs, probe_indices
 from worker.studies.engine import EngineChoice, choose_engine
 from worker.studies.evaluation import SilentContext, design_inputs
 from worker.studies.examples import STUDY_EXAMPLES
@@ -76,15 +76,6 @@ def study_cost(spec: StudySpec, process: ProcessDefinition) -> int:
     return math.ceil(spec.designs.count * share * _MILLIONTHS)
 
 
-def _probe_indices(count: int, most: int = 9) -> list[int]:
-    """Designs a dry check tries, in order: the first, then evenly spread ones, the
-    middle among them, then the last."""
-    if count <= most:
-        return list(range(count))
-    spread = [round(i * (count - 1) / (most - 1)) for i in range(most)]
-    return list(dict.fromkeys([0, count // 2, *spread]))
-
-
 def dry_check(spec: StudySpec, process: ProcessDefinition) -> list[dict[str, Any]]:
     """At submission, for the study of ``process``: varied paths the process takes no
     number at and objectives that are no number it declares
@@ -116,7 +107,7 @@ def dry_check(spec: StudySpec, process: ProcessDefinition) -> list[dict[str, Any
     varied = {_field_of(name) for name in spec.designs.names}
     inputs = None
     refusals: list[InvalidInputs] = []
-    for index in _probe_indices(spec.designs.count):
+    for index in probe_indices(spec.designs.count):
         design = tuple(float(v) for v in spec.designs.block(index, index + 1)[0])
         raw = design_inputs(spec, design)
         if "plots" in process.inputs_model.model_fields:

@@ -25,6 +25,7 @@ from tests.unit.worker.studies.study_requests import (
     property_settings,
     study_bodies,
 )
+from worker.processes import ProcessRegistry
 
 NATIVE = "/v1/processes/design-study/execution"
 OGC = "/ogc/processes/design-study/execution"
@@ -36,10 +37,11 @@ CHAINS = {"chains": [{"name": "Fig 2a", "lengths": [15, 15, 15, 15]},
 
 
 @contextmanager
-def app_client(data_dir: Path) -> Iterator[Send]:
-    """A blocking ``send(method, url, **kwargs)`` to the real app over httpx's ASGI
-    transport, its lifespan entered, with no worker pool."""
-    app = create_app(Settings(data_dir=data_dir, workers=0))
+def app_client(data_dir: Path, registry: ProcessRegistry | None = None) -> Iterator[Send]:
+    """A blocking ``send(method, url, **kwargs)`` to the real app (serving ``registry``,
+    by default every process) over httpx's ASGI transport, its lifespan entered, with no
+    worker pool."""
+    app = create_app(Settings(data_dir=data_dir, workers=0), registry=registry)
     transport = httpx.ASGITransport(app=app)
     client = httpx.AsyncClient(transport=transport, base_url="http://dexlab.test")
     with (

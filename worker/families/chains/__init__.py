@@ -99,6 +99,7 @@ CHAIN_PARALLELISM = ProcessDefinition(
     },
     cost=chain_parallelism_cost,
     cost_limit=CHAIN_COST_LIMIT,
+    seconds_per_cost=5e-5,
     cost_unit="links x loops, plus cyclic arrangements of single loops",
     sync_cost_limit=CHAIN_SYNC_COST_LIMIT,
     time_limit_s=TIME_LIMIT_S,

@@ -115,6 +115,7 @@ CONDITIONING_MAP = ProcessDefinition(
     },
     cost=conditioning_map_cost,
     cost_limit=CONDITIONING_MAP_COST_LIMIT,
+    seconds_per_cost=1.1e-6,
     cost_unit=COST_UNIT,
     time_limit_s=CONDITIONING_MAP_TIME_LIMIT_S,
     study_kernel=CONDITIONING_MAP_KERNEL,
@@ -174,6 +175,7 @@ OPTIMISATION = ProcessDefinition(
     },
     cost=optimisation_cost,
     cost_limit=OPTIMISATION_COST_LIMIT,
+    seconds_per_cost=1e-7,
     cost_unit=COST_UNIT,
     time_limit_s=OPTIMISATION_TIME_LIMIT_S,
 )

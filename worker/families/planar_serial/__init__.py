@@ -137,6 +137,8 @@ DEXTERITY_MAP = ProcessDefinition(
     },
     cost=dexterity_map_cost,
     cost_limit=COST_LIMIT,
+    seconds_per_cost=5e-7,
+    seconds_per_run=0.015,  # the checks of its links and joint limits
     sync_cost_limit=SYNC_COST_LIMIT,
     time_limit_s=TIME_LIMIT_S,
     study_kernel=DEXTERITY_MAP_KERNEL,
@@ -196,6 +198,7 @@ SYNTHESIS = ProcessDefinition(
     },
     cost=synthesis_cost,
     cost_limit=COST_LIMIT,
+    seconds_per_cost=6e-8,
     time_limit_s=TIME_LIMIT_S,
 )
 

@@ -151,6 +151,7 @@ CONDITIONING_MAP = ProcessDefinition(
     },
     cost=conditioning_map_cost,
     cost_limit=CONDITIONING_MAP_COST_LIMIT,
+    seconds_per_cost=1e-6,
     cost_unit=COST_UNIT,
     time_limit_s=CONDITIONING_MAP_TIME_LIMIT_S,
     sync_cost_limit=CONDITIONING_MAP_SYNC_COST_LIMIT,
@@ -202,6 +203,7 @@ DESIGN_SPACE = ProcessDefinition(
     },
     cost=design_space_cost,
     cost_limit=DESIGN_SPACE_COST_LIMIT,
+    seconds_per_cost=6e-7,
     cost_unit=COST_UNIT,
     time_limit_s=DESIGN_SPACE_TIME_LIMIT_S,
     sync_cost_limit=DESIGN_SPACE_SYNC_COST_LIMIT,
@@ -278,6 +280,7 @@ OPTIMISATION = ProcessDefinition(
     },
     cost=optimisation_cost,
     cost_limit=OPTIMISATION_COST_LIMIT,
+    seconds_per_cost=3e-7,
     cost_unit=COST_UNIT,
     time_limit_s=OPTIMISATION_TIME_LIMIT_S,
 )

@@ -4,6 +4,7 @@ read from a kernel's arrays (as from a result document)."""
 from __future__ import annotations
 
 import math
+import time
 from typing import Any
 
 import numpy as np
@@ -92,14 +93,23 @@ def test_the_kernels_price_follows_the_objectives() -> None:
     assert cost({"indices.real_samples": "max"}) == 144 + 236_880
 
 
+def _no_clock(monkeypatch: pytest.MonkeyPatch) -> None:
+    """Any reading of a clock while the chunks are planned fails the test."""
+
+    def never(*args: Any, **kwargs: Any) -> Any:
+        raise AssertionError("a study's chunks are planned without timing anything")
+
+    # not time.time: imports (numpy.f2py) and logging read the wall clock, not a timer
+    for name in ("perf_counter", "perf_counter_ns", "monotonic", "monotonic_ns",
+                 "process_time", "process_time_ns"):  # fmt: skip
+        monkeypatch.setattr(time, name, never)
+
+
 def test_batched_chunks_follow_the_cost_model_alone(monkeypatch: pytest.MonkeyPatch) -> None:
     """No design is timed: the same inputs give the same chunks, sized for about a
     second by the kernel's cost and throughput."""
 
-    def never(*args: Any, **kwargs: Any) -> Any:
-        raise AssertionError("a batched study times no design")
-
-    monkeypatch.setattr(chunking, "_timed_seconds", never)
+    _no_clock(monkeypatch)
     inputs = {**SPM, "vary": {"alpha1_deg": [30, 150, 500], "alpha2_deg": [30, 150, 400]}}
     spec = StudySpec.model_validate(inputs)
     first, again = chunk_inputs(spec), chunk_inputs(spec)
@@ -108,6 +118,33 @@ def test_batched_chunks_follow_the_cost_model_alone(monkeypatch: pytest.MonkeyPa
     size = math.ceil(1.0 / chunking.design_seconds(choice))
     assert first[0]["stop"] == size and {c["engine"] for c in first} == {"batched"}
     assert first[-1]["stop"] == 200_000 and len(first) == math.ceil(200_000 / size)
+
+
+def test_per_design_chunks_follow_the_cost_model_alone(monkeypatch: pytest.MonkeyPatch) -> None:
+    """A per-design study times no design either: its chunks follow from a job's cost
+    model on the first design the process accepts (the first designs of this study are
+    refused: they reach none of the workspace), so a re-run splits the same way on any
+    machine; ``chunk_size`` still overrides."""
+    inputs = {**SPM, "engine": "per-design"}
+    spec = StudySpec.model_validate(inputs)
+    process = REGISTRY.get(spec.process)
+    assert process is not None
+    with monkeypatch.context() as patched:
+        _no_clock(patched)
+        first, again = chunk_inputs(spec), chunk_inputs(spec)
+        seconds = chunking.per_design_seconds(spec, process)
+        given_size = chunk_inputs(StudySpec.model_validate({**inputs, "chunk_size": 7}))
+    bounds = [(c["start"], c["stop"]) for c in first]
+    assert bounds == [(c["start"], c["stop"]) for c in again]
+    assert {c["engine"] for c in first} == {"per-design"}
+    expected = min(math.ceil(1.0 / seconds), math.ceil(spec.designs.count / chunking.MIN_CHUNKS))
+    assert bounds[0] == (0, expected) and bounds[-1][1] == spec.designs.count
+    cost = 38_575  # the accepted designs' cost (16 orientations over the workspace)
+    assert seconds == pytest.approx(
+        process.seconds_per_run + cost * process.seconds_per_cost
+        + chunking.VALIDATION_SECONDS_PER_DESIGN
+    )  # fmt: skip
+    assert [c["stop"] - c["start"] for c in given_size[:-1]] == [7] * (len(given_size) - 1)
 
 
 def test_a_study_says_which_engine_ran_it() -> None:

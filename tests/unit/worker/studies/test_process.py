@@ -73,9 +73,9 @@ def test_chunks_cover_every_design_once_in_order() -> None:
     study = spec(vary={"links[2]": [6, 10, 11]}, chunk_size=4)
     chunks = chunk_inputs(study)
     assert [(c["start"], c["stop"]) for c in chunks] == [(0, 4), (4, 8), (8, 11)]
-    timed = chunk_inputs(spec(vary={"links[2]": [6, 10, 11]}))
-    assert len(timed) >= 3  # at least four chunks' worth of designs each (11 designs)
-    assert timed[0]["start"] == 0 and timed[-1]["stop"] == 11
+    planned = chunk_inputs(spec(vary={"links[2]": [6, 10, 11]}))
+    assert len(planned) >= 3  # at least four chunks' worth of designs each (11 designs)
+    assert planned[0]["start"] == 0 and planned[-1]["stop"] == 11
 
 
 def test_the_cost_is_designs_times_the_first_designs_share_of_the_limit() -> None:
