@@ -11,6 +11,7 @@ __all__ = [
     "CONFORMANCE",
     "EXCEPTION_TYPES",
     "HTML",
+    "INVALID_PARAMETER_VALUE",
     "JSON",
     "OAS30_CONFORMANCE",
     "OGC_PREFIX",
@@ -64,6 +65,13 @@ EXCEPTION_TYPES: dict[str, str] = {
     for slug in ("no-such-process", "no-such-job", "result-not-ready")
 }
 
+#: The type of a 400 for a query or path parameter with a bad value: the exception
+#: code OGC web services use for it (OWS Common ``InvalidParameterValue``, as
+#: pygeoapi answers), under the standard's exception namespace.
+INVALID_PARAMETER_VALUE = (
+    "http://www.opengis.net/def/exceptions/ogcapi-processes-1/1.0/InvalidParameterValue"
+)
+
 JSON = "application/json"
 HTML = "text/html"
 
@@ -82,7 +90,9 @@ def is_ogc_path(path: str | None) -> bool:
 def exception_type(slug: str, path: str | None) -> str | None:
     """The OGC exception type of a problem answered at ``path``, or None (then the
     problem keeps dexlab's own type)."""
-    return EXCEPTION_TYPES.get(slug) if is_ogc_path(path) else None
+    if not is_ogc_path(path):
+        return None
+    return INVALID_PARAMETER_VALUE if slug == "invalid-parameter" else EXCEPTION_TYPES.get(slug)
 
 
 def conformance_classes(callbacks: bool, openapi_version: str) -> list[str]:

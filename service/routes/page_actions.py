@@ -36,7 +36,6 @@ from service.request_guard import json_depth
 from worker.errors import (
     CostLimitExceeded,
     InvalidInputs,
-    NoSuchProcess,
     QueueFull,
     QuotaExceeded,
 )
@@ -101,9 +100,7 @@ async def run_process(
     identity: IdentityDep,
 ) -> RedirectResponse | HTMLResponse:
     check_form_origin(request)
-    definition = registry.get(process_id)
-    if definition is None:
-        raise NoSuchProcess(f"No process {process_id!r}; available: {', '.join(registry.ids())}.")
+    definition = registry.require(process_id)
     form = await read_form(request)
     check_csrf(request, form)
     text = form.get("inputs", "")
