@@ -3,8 +3,9 @@ description) and the factories that make every problem document it answers.
 
 A bad query, path or header parameter is one shape per surface
 (:func:`parameter_problem`): under ``/v1`` a 422 ``invalid-request``, under ``/ogc`` a
-400 of OGC's ``InvalidParameterValue`` type; either way ``errors`` names the parameter
-as ``query.<name>`` (``path.<name>``, ``header.<name>``).  A handler that finds a bad
+400 of OGC's ``invalid-parameter-value`` type (OWS ``InvalidParameterValue``); either
+way ``errors`` names the parameter as ``query.<name>`` (``path.<name>``,
+``header.<name>``).  A handler that finds a bad
 parameter itself raises :func:`parameter_error`, so it takes the same path.
 """
 
@@ -40,7 +41,7 @@ PROBLEM_TYPES: dict[str, tuple[int, str, str]] = {
         "Invalid request",
         "The request body, a query parameter or a header is malformed; `errors` names it.",
     ),
-    "invalid-parameter": (
+    "invalid-parameter-value": (
         400,
         "Invalid parameter value",
         "Under /ogc/: a query, path or header parameter has a value the API definition "
@@ -206,7 +207,7 @@ def parameter_error(where: str, name: str, message: str) -> RequestValidationErr
 
 def parameter_problem(path: str, errors: Sequence[Any]) -> JSONResponse:
     """The problem document of a request that failed validation at ``path``: a bad
-    parameter under ``/ogc/`` is a 400 ``invalid-parameter``; everything else (and all
+    parameter under ``/ogc/`` is a 400 ``invalid-parameter-value``; everything else (and all
     of ``/v1``) a 422 ``invalid-request``; a body that is not JSON a 400."""
     named = field_errors(errors)
     if any(e.get("type") == "json_invalid" for e in named):
@@ -214,7 +215,7 @@ def parameter_problem(path: str, errors: Sequence[Any]) -> JSONResponse:
             "malformed-request", detail="The request body is not valid JSON.", instance=path
         )
     in_body = any(tuple(err.get("loc", ()))[:1] == ("body",) for err in errors)
-    slug = "invalid-parameter" if is_ogc_path(path) and not in_body else "invalid-request"
+    slug = "invalid-parameter-value" if is_ogc_path(path) and not in_body else "invalid-request"
     first = named[0] if named else {"field": "body", "message": "invalid"}
     detail = f"Invalid value for '{first['field']}': {first['message']}"
     if len(named) > 1:

@@ -62,15 +62,13 @@ REL_EXCEPTIONS = _REL + "exceptions"
 #: dexlab problem slug -> the exception type 1.0 defines for it.
 EXCEPTION_TYPES: dict[str, str] = {
     slug: f"http://www.opengis.net/def/exceptions/ogcapi-processes-1/1.0/{slug}"
-    for slug in ("no-such-process", "no-such-job", "result-not-ready")
+    for slug in ("no-such-process", "no-such-job", "result-not-ready", "invalid-parameter-value")
 }
 
-#: The type of a 400 for a query or path parameter with a bad value: the exception
-#: code OGC web services use for it (OWS Common ``InvalidParameterValue``, as
-#: pygeoapi answers), under the standard's exception namespace.
-INVALID_PARAMETER_VALUE = (
-    "http://www.opengis.net/def/exceptions/ogcapi-processes-1/1.0/InvalidParameterValue"
-)
+#: The type of a 400 for a query, path or header parameter with a bad value: the
+#: exception OGC web services name ``InvalidParameterValue`` (OWS Common, as pygeoapi
+#: answers), spelt like its siblings under the standard's exception namespace.
+INVALID_PARAMETER_VALUE = EXCEPTION_TYPES["invalid-parameter-value"]
 
 JSON = "application/json"
 HTML = "text/html"
@@ -90,9 +88,7 @@ def is_ogc_path(path: str | None) -> bool:
 def exception_type(slug: str, path: str | None) -> str | None:
     """The OGC exception type of a problem answered at ``path``, or None (then the
     problem keeps dexlab's own type)."""
-    if not is_ogc_path(path):
-        return None
-    return INVALID_PARAMETER_VALUE if slug == "invalid-parameter" else EXCEPTION_TYPES.get(slug)
+    return EXCEPTION_TYPES.get(slug) if is_ogc_path(path) else None
 
 
 def conformance_classes(callbacks: bool, openapi_version: str) -> list[str]:

@@ -1,7 +1,8 @@
 """Every query and path parameter of every ``/v1`` and ``/ogc`` route, sent a bad value,
 answers its surface's one shape (issue 27): ``/v1`` a 422 ``/problems/invalid-request``
 naming ``query.<name>`` (or ``path.<name>``), ``/ogc`` a 400 of OGC's
-``InvalidParameterValue`` type naming it the same way.
+``invalid-parameter-value`` type (OWS ``InvalidParameterValue``) naming it the
+same way.
 
 The parameters are read from the served OpenAPI document, so a new parameter is tested
 the day it is published.
