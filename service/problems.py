@@ -24,6 +24,7 @@ __all__ = [
     "PROBLEM_TYPES",
     "parameter_error",
     "parameter_problem",
+    "problem_document",
     "problem_response",
     "problem_type_uri",
 ]
@@ -158,6 +159,33 @@ def problem_type_uri(slug: str) -> str:
     return f"/problems/{slug}"
 
 
+def problem_document(
+    slug: str,
+    *,
+    detail: str,
+    instance: str | None = None,
+    status: int | None = None,
+    title: str | None = None,
+    **extra: Any,
+) -> dict[str, Any]:
+    """The problem document of a known problem type (under ``/ogc/``, with the exception
+    type OGC API - Processes defines for it, where it defines one).  ``slug`` may also
+    be a type URI a job recorded; the status and title of a type dexlab does not serve
+    are ``internal-error``'s unless given."""
+    default_status, default_title, _ = PROBLEM_TYPES.get(slug, PROBLEM_TYPES["internal-error"])
+    kind = slug if slug.startswith(("/", "http:", "https:")) else problem_type_uri(slug)
+    body: dict[str, Any] = {
+        "type": exception_type(slug, instance) or kind,
+        "title": title or default_title,
+        "status": status or default_status,
+        "detail": detail,
+    }
+    if instance:
+        body["instance"] = instance
+    body.update(extra)
+    return body
+
+
 def problem_response(
     slug: str,
     *,
@@ -168,18 +196,10 @@ def problem_response(
     headers: dict[str, str] | None = None,
     **extra: Any,
 ) -> JSONResponse:
-    """A problem+json response of a known problem type (under ``/ogc/``, with the
-    exception type OGC API - Processes defines for it, where it defines one)."""
-    default_status, default_title, _ = PROBLEM_TYPES.get(slug, PROBLEM_TYPES["internal-error"])
-    body: dict[str, Any] = {
-        "type": exception_type(slug, instance) or problem_type_uri(slug),
-        "title": title or default_title,
-        "status": status or default_status,
-        "detail": detail,
-    }
-    if instance:
-        body["instance"] = instance
-    body.update(extra)
+    """A problem+json response: :func:`problem_document` with its status."""
+    body = problem_document(
+        slug, detail=detail, instance=instance, status=status, title=title, **extra
+    )
     return JSONResponse(body, status_code=body["status"], media_type=PROBLEM_JSON, headers=headers)
 
 
