@@ -166,16 +166,18 @@ def problem_document(
     instance: str | None = None,
     status: int | None = None,
     title: str | None = None,
+    type_uri: str | None = None,
     **extra: Any,
 ) -> dict[str, Any]:
     """The problem document of a known problem type (under ``/ogc/``, with the exception
     type OGC API - Processes defines for it, where it defines one).  ``slug`` may also
     be a type URI a job recorded; the status and title of a type dexlab does not serve
-    are ``internal-error``'s unless given."""
+    are ``internal-error``'s unless given.  ``type_uri`` overrides the type (a document
+    sent elsewhere, e.g. a callback, names it absolutely)."""
     default_status, default_title, _ = PROBLEM_TYPES.get(slug, PROBLEM_TYPES["internal-error"])
     kind = slug if slug.startswith(("/", "http:", "https:")) else problem_type_uri(slug)
     body: dict[str, Any] = {
-        "type": exception_type(slug, instance) or kind,
+        "type": type_uri or exception_type(slug, instance) or kind,
         "title": title or default_title,
         "status": status or default_status,
         "detail": detail,
