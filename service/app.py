@@ -17,14 +17,14 @@ from service.api_docs import install_api_docs
 from service.auth.gate import AuthGate
 from service.auth.startup import start_auth
 from service.config import ServiceSettings, Settings
-from service.errors import install_error_handlers, problem_response
+from service.errors import install_error_handlers
 from service.job_watcher import JobWatcher
 from service.metrics import install_metrics
 from service.ogc.forwarded import ForwardedHeaders
 from service.ogc.router import ogc_router
 from service.openapi import install_openapi
 from service.pages import STATIC_DIR, STATIC_PREFIX, Pages
-from service.problems import PROBLEM_TYPES
+from service.problems import PROBLEM_TYPES, problem_response
 from service.request_guard import RequestGuard
 from service.request_id import RequestId
 from service.routes import (

@@ -16,9 +16,8 @@ from starlette.responses import Response
 from service.allow import allow_header, allowed_methods
 from service.auth.errors import Forbidden, Unauthenticated
 from service.ogc.execute_request import InvalidRequest
-from service.ogc.vocabulary import exception_type, is_ogc_path
 from service.pages.problem_page import as_page_if_asked
-from service.problems import PROBLEM_TYPES, problem_type_uri
+from service.problems import PROBLEM_TYPES, parameter_problem, problem_response
 from worker.errors import (
     CostLimitExceeded,
     DexlabError,
@@ -39,11 +38,9 @@ from worker.errors import (
     StoreUnavailable,
 )
 
-__all__ = ["dexlab_problem", "install_error_handlers", "problem_response"]
+__all__ = ["dexlab_problem", "install_error_handlers"]
 
 log = logging.getLogger("dexlab.service")
-
-PROBLEM_JSON = "application/problem+json"
 
 _SLUGS: dict[type[DexlabError], str] = {
     Unauthenticated: "unauthorized",
@@ -105,44 +102,6 @@ _HTTP_SLUGS = {
 }
 
 
-def problem_response(
-    slug: str,
-    *,
-    detail: str,
-    instance: str | None = None,
-    status: int | None = None,
-    title: str | None = None,
-    headers: dict[str, str] | None = None,
-    **extra: Any,
-) -> JSONResponse:
-    """A problem+json response of a known problem type."""
-    default_status, default_title, _ = PROBLEM_TYPES.get(slug, PROBLEM_TYPES["internal-error"])
-    body: dict[str, Any] = {
-        # Under /ogc/, the exception types OGC API - Processes defines.
-        "type": exception_type(slug, instance) or problem_type_uri(slug),
-        "title": title or default_title,
-        "status": status or default_status,
-        "detail": detail,
-    }
-    if instance:
-        body["instance"] = instance
-    body.update(extra)
-    return JSONResponse(body, status_code=body["status"], media_type=PROBLEM_JSON, headers=headers)
-
-
-def _request_errors(exc: RequestValidationError) -> list[dict[str, Any]]:
-    errors = []
-    for err in exc.errors():
-        loc = [str(p) for p in err.get("loc", ())]
-        if loc and loc[0] == "body":
-            loc = loc[1:] or ["body"]
-        field = ""
-        for part in loc:
-            field += f"[{part}]" if part.isdigit() else (f".{part}" if field else part)
-        errors.append({"field": field, "message": err.get("msg", ""), "type": err.get("type")})
-    return errors
-
-
 def _page_if_asked(handler: Callable[[Request, Any], Awaitable[Response]]) -> Any:
     """The handler, answering with the problem page when the client asked for HTML."""
 
@@ -150,13 +109,6 @@ def _page_if_asked(handler: Callable[[Request, Any], Awaitable[Response]]) -> An
         return as_page_if_asked(request, await handler(request, exc))
 
     return negotiated
-
-
-def _parameter_status(request: Request, exc: RequestValidationError) -> int | None:
-    """400 for a bad query, path or header parameter under /ogc/ (OGC's status for an
-    incorrect parameter value); None (the problem's own 422) otherwise."""
-    in_body = any(tuple(err.get("loc", ()))[:1] == ("body",) for err in exc.errors())
-    return 400 if is_ogc_path(request.url.path) and not in_body else None
 
 
 def dexlab_problem(request: Request, exc: DexlabError) -> JSONResponse:
@@ -196,21 +148,7 @@ def install_error_handlers(app: FastAPI) -> None:
     @app.exception_handler(RequestValidationError)
     @_page_if_asked
     async def _validation(request: Request, exc: RequestValidationError) -> JSONResponse:
-        errors = _request_errors(exc)
-        if any(e.get("type") == "json_invalid" for e in errors):
-            return problem_response(
-                "malformed-request",
-                detail="The request body is not valid JSON.",
-                instance=str(request.url.path),
-            )
-        first = errors[0] if errors else {"field": "body", "message": "invalid"}
-        detail = f"Invalid value for '{first['field']}': {first['message']}"
-        if len(errors) > 1:
-            detail += f" (and {len(errors) - 1} more problem(s))"
-        return problem_response(
-            "invalid-request", detail=detail, instance=str(request.url.path), errors=errors,
-            status=_parameter_status(request, exc),
-        )  # fmt: skip
+        return parameter_problem(str(request.url.path), exc.errors())
 
     @app.exception_handler(StarletteHTTPException)
     @_page_if_asked

@@ -21,6 +21,7 @@ from pydantic.json_schema import models_json_schema
 
 from service.auth.public_routes import is_public
 from service.ogc.schemas import OGC_ROUTE_PROBLEMS, document_process_ids
+from service.ogc.vocabulary import is_ogc_path
 from service.openapi_streams import artifact_responses, event_stream_response
 from service.problems import PROBLEM_TYPES
 from service.schemas import RETENTION, ROUTE_DOCUMENTS, document_schemas
@@ -105,7 +106,8 @@ _DESCRIPTIONS = {
     429: "A quota of this API key: too many jobs queued or submissions this minute "
     "(`limit` names the setting; `Retry-After`).",
     413: "The request body is larger than the service accepts.",
-    422: "Invalid inputs or parameters; `errors` names every bad field.",
+    422: "Invalid inputs or parameters; `errors` names every bad field (a parameter as "
+    "`query.<name>` or `path.<name>`).",
     500: "An unexpected error (logged), or the failure of the job whose results were asked.",
     503: "The job store is unavailable (see `Retry-After`), or the service is not ready.",
     507: "The job store's disk is full.",
@@ -125,9 +127,19 @@ def _default_statuses(method: str, operation: dict[str, Any]) -> tuple[int, ...]
     return tuple(sorted(statuses))
 
 
-def _problem_response(status: int) -> dict[str, Any]:
+#: The 400 of an ``/ogc/`` operation: OGC's status for a bad parameter.
+_OGC_400 = (
+    "A query, path or header parameter has a value the API definition does not allow "
+    "(`invalid-parameter-value`; `errors` names it as `query.<name>`), or the body is "
+    "not UTF-8 JSON or nests too deeply."
+)
+
+
+def _problem_response(status: int, path: str = "") -> dict[str, Any]:
     titles = sorted({t for s, t, _ in PROBLEM_TYPES.values() if s == status})
     description = _DESCRIPTIONS.get(status, ", ".join(titles) or "A problem.")
+    if status == 400 and is_ogc_path(path):
+        description = _OGC_400
     return {
         "description": description,
         "content": {PROBLEM_JSON: {"schema": {"$ref": "#/components/schemas/ProblemDocument"}}},
@@ -252,7 +264,7 @@ def _rewrite(
                 statuses = (*statuses, 401)
                 operation["security"] = [{"apiKey": []}, {}]
             for status in (*statuses, 500):
-                responses[str(status)] = _problem_response(status)
+                responses[str(status)] = _problem_response(status, path)
             if method == "post" and path.endswith("/execution") and path.startswith("/v1/"):
                 responses["200"] = {
                     "description": "The result document: the job finished within the "

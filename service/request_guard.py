@@ -26,7 +26,7 @@ from starlette.routing import BaseRoute
 from starlette.types import ASGIApp, Message, Receive, Scope, Send
 
 from service.allow import allow_header, allowed_methods
-from service.errors import problem_response
+from service.problems import problem_response
 
 __all__ = ["RequestGuard", "json_depth"]
 

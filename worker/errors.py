@@ -27,7 +27,7 @@ status code and an RFC 9457 problem type in exactly one place (``service.errors`
 
 from __future__ import annotations
 
-from collections.abc import Mapping, Sequence
+from collections.abc import Iterable, Mapping, Sequence
 from typing import Any
 
 __all__ = [
@@ -86,6 +86,11 @@ class IdempotencyConflict(DexlabError):
 
 class NoSuchProcess(DexlabError):
     """No process with this ID."""
+
+    @classmethod
+    def named(cls, process_id: str, available: Iterable[str]) -> NoSuchProcess:
+        """The error for ``process_id``, listing the IDs there are (the one wording)."""
+        return cls(f"No process {process_id!r}; available: {', '.join(available)}.")
 
 
 class NoSuchJob(DexlabError):

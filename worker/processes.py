@@ -19,6 +19,7 @@ from typing import Any, Protocol
 from pydantic import BaseModel
 
 from worker.contract import ChildEnd, JobContext, JobOutcome
+from worker.errors import NoSuchProcess
 from worker.result_paths import ResultPathInfo
 from worker.study_kernels import StudyKernel
 
@@ -280,6 +281,13 @@ class ProcessRegistry:
 
     def get(self, process_id: str) -> ProcessDefinition | None:
         return self._by_id.get(process_id)
+
+    def require(self, process_id: str) -> ProcessDefinition:
+        """The definition of ``process_id``; :class:`NoSuchProcess` if there is none."""
+        definition = self._by_id.get(process_id)
+        if definition is None:
+            raise NoSuchProcess.named(process_id, self.ids())
+        return definition
 
     def ids(self) -> list[str]:
         return list(self._by_id)

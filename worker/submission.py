@@ -15,7 +15,7 @@ from typing import Any
 
 from worker.contract import JobRecord
 from worker.dispatch import Dispatcher
-from worker.errors import CostLimitExceeded, InvalidInputs, NoSuchProcess
+from worker.errors import CostLimitExceeded, InvalidInputs
 from worker.input_validation import field_errors, field_path, validate_inputs
 from worker.processes import ProcessRegistry
 from worker.request_hash import request_hash
@@ -97,9 +97,7 @@ def submit_request(
     sweeper sends it later); a replayed idempotent request is not dispatched again.  An
     idempotency key is the owner's own: another owner's same key makes another job.
     """
-    definition = registry.get(process_id)
-    if definition is None:
-        raise NoSuchProcess(f"No process {process_id!r}; available: {', '.join(registry.ids())}.")
+    definition = registry.require(process_id)
     inputs = validate_inputs(definition, raw_inputs)
     cost = definition.cost(inputs)
     if cost > definition.cost_limit:

@@ -36,7 +36,7 @@ from service.ogc.outputs import process_outputs
 from service.ogc.results import document_bytes, select_outputs
 from service.ogc.urls import PublicUrls
 from service.ogc.vocabulary import EXCEPTION_TYPES, JSON
-from service.problems import PROBLEM_TYPES
+from service.problems import PROBLEM_TYPES, problem_document, problem_type_uri
 from worker.contract import JobStatus
 from worker.processes import ProcessRegistry
 from worker.store.base import CallbackClaim, JobStore
@@ -141,12 +141,11 @@ def _json(document: dict[str, Any]) -> bytes:
 def _failure(error: Any, urls: PublicUrls, job_id: str) -> dict[str, Any]:
     slug = str(error.get("type", "job-failed"))
     slug = slug if slug in PROBLEM_TYPES else "job-failed"
-    status, title, _ = PROBLEM_TYPES[slug]
-    return {
-        "type": EXCEPTION_TYPES.get(slug) or f"{urls.root}/problems/{slug}",
-        "title": str(error.get("title") or title),
-        "status": status,
-        "detail": str(error.get("detail", "The job failed.")),
-        "instance": urls.job(job_id),
-        "jobID": job_id,
-    }
+    return problem_document(
+        slug,
+        detail=str(error.get("detail", "The job failed.")),
+        title=str(error.get("title") or PROBLEM_TYPES[slug][1]),
+        instance=urls.job(job_id),
+        type_uri=EXCEPTION_TYPES.get(slug) or f"{urls.root}{problem_type_uri(slug)}",
+        jobID=job_id,
+    )

@@ -25,7 +25,7 @@ from service.ogc.results import results_response, select_outputs
 from service.ogc.urls import PublicUrls
 from worker.contract import JobRecord, JobStatus
 from worker.dispatch import Dispatcher
-from worker.errors import JobFailed, NoSuchJob, NoSuchProcess, ResultNotReady
+from worker.errors import JobFailed, NoSuchJob, ResultNotReady
 from worker.processes import ProcessDefinition, ProcessRegistry
 from worker.store.base import JobStore
 
@@ -44,10 +44,7 @@ def outbound_policy(settings: ServiceSettings) -> OutboundPolicy:
 
 
 def definition_of(registry: ProcessRegistry, process_id: str) -> ProcessDefinition:
-    definition = registry.get(process_id)
-    if definition is None:
-        raise NoSuchProcess(f"No process {process_id!r}; available: {', '.join(registry.ids())}.")
-    return definition
+    return registry.require(process_id)
 
 
 @dataclass(frozen=True)

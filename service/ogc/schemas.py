@@ -168,14 +168,15 @@ ARTIFACT_CONTENT: dict[str, Any] = {
 
 #: Problem statuses of each route (see service.openapi).
 OGC_ROUTE_PROBLEMS: dict[tuple[str, str], tuple[int, ...]] = {
-    # A GET's 400: a bad query parameter (``f`` on every one).
+    # A 400: a bad query, path or header parameter (``f`` on every GET), or a POST's
+    # malformed body.
     ("get", "/ogc"): (400,),
     ("get", "/ogc/"): (400,),
     ("get", "/ogc/conformance"): (400,),
     ("get", "/ogc/processes"): (400,),
     ("get", "/ogc/processes/{processID}"): (400, 404),
     ("post", "/ogc/processes/{processID}/execution"): (400, 404, 413, 422, 429, 503, 507),
-    ("get", "/ogc/jobs"): (400, 403, 404, 503),
+    ("get", "/ogc/jobs"): (400, 403, 503),
     # An expired job (its retention ended) is 410 for a while, then 404.
     ("get", "/ogc/jobs/{jobID}"): (400, 404, 410, 503),
     ("delete", "/ogc/jobs/{jobID}"): (404, 410, 503),
@@ -186,7 +187,7 @@ OGC_ROUTE_PROBLEMS: dict[tuple[str, str], tuple[int, ...]] = {
 
 def document_process_ids(document: dict[str, Any], process_ids: list[str]) -> None:
     """Name the registered processes in the OpenAPI document's ``processID`` filter of
-    ``GET /ogc/jobs`` (another ID is answered ``404 no-such-process``)."""
+    ``GET /ogc/jobs`` (another ID is a bad value: ``400 invalid-parameter-value``)."""
     operation = document.get("paths", {}).get("/ogc/jobs", {}).get("get", {})
     for parameter in operation.get("parameters", []):
         if parameter.get("name") == "processID" and parameter.get("in") == "query":

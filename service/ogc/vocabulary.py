@@ -11,6 +11,7 @@ __all__ = [
     "CONFORMANCE",
     "EXCEPTION_TYPES",
     "HTML",
+    "INVALID_PARAMETER_VALUE",
     "JSON",
     "OAS30_CONFORMANCE",
     "OGC_PREFIX",
@@ -61,8 +62,13 @@ REL_EXCEPTIONS = _REL + "exceptions"
 #: dexlab problem slug -> the exception type 1.0 defines for it.
 EXCEPTION_TYPES: dict[str, str] = {
     slug: f"http://www.opengis.net/def/exceptions/ogcapi-processes-1/1.0/{slug}"
-    for slug in ("no-such-process", "no-such-job", "result-not-ready")
+    for slug in ("no-such-process", "no-such-job", "result-not-ready", "invalid-parameter-value")
 }
+
+#: The type of a 400 for a query, path or header parameter with a bad value: the
+#: exception OGC web services name ``InvalidParameterValue`` (OWS Common, as pygeoapi
+#: answers), spelt like its siblings under the standard's exception namespace.
+INVALID_PARAMETER_VALUE = EXCEPTION_TYPES["invalid-parameter-value"]
 
 JSON = "application/json"
 HTML = "text/html"

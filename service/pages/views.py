@@ -19,7 +19,7 @@ from service.pages.input_table import input_rows
 from service.pages.quantities import job_quantities
 from service.pages.renderer import Pages
 from service.pages.result_view import result_view
-from service.problems import PROBLEM_TYPES, problem_type_uri
+from service.problems import PROBLEM_TYPES, problem_document
 from worker.contract import ArtifactInfo, JobRecord, JobStatus
 from worker.processes import ProcessDefinition, ProcessRegistry
 from worker.result_paths import plain_symbol
@@ -172,25 +172,20 @@ def job_list_page(
 
 def _failure(job: JobRecord) -> dict[str, Any] | None:
     if job.status is JobStatus.DISMISSED:
-        status, title, _ = PROBLEM_TYPES["job-dismissed"]
-        return {
-            "type": problem_type_uri("job-dismissed"),
-            "title": title,
-            "status": status,
-            "detail": "This job was dismissed; it has no results.",
-        }
+        return problem_document(
+            "job-dismissed", detail="This job was dismissed; it has no results."
+        )
     if job.status is not JobStatus.FAILED:
         return None
     error = dict(job.error or {})
     slug = str(error.get("type") or "job-failed")
     status, title, _ = PROBLEM_TYPES.get(slug, PROBLEM_TYPES["job-failed"])
-    kind = slug if slug.startswith(("/", "http:", "https:")) else problem_type_uri(slug)
-    return {
-        "type": kind,
-        "title": str(error.get("title") or title),
-        "status": status,
-        "detail": str(error.get("detail") or "The job failed."),
-    }
+    return problem_document(
+        slug,
+        detail=str(error.get("detail") or "The job failed."),
+        status=status,
+        title=str(error.get("title") or title),
+    )
 
 
 def _plots(artifacts: Sequence[ArtifactInfo], base: str) -> list[dict[str, str]]:

@@ -7,7 +7,7 @@ from typing import Any
 from fastapi import APIRouter
 
 from service.deps import PoolDep, SettingsDep, StoreDep
-from service.errors import problem_response
+from service.problems import problem_response
 from worker.errors import StorageError, StorageFull, StoreUnavailable
 
 __all__ = ["router"]

@@ -19,9 +19,9 @@ from service.deps import RegistryDep, StoreDep
 from service.documents import artifact_headers, results_document, status_document
 from service.job_lookup import find_job, missing_job
 from service.pages import FormatQuery, Pages, PagesDep, views, wants_html
+from service.parameters import CursorQuery
 from worker.contract import JobRecord, JobStatus
 from worker.errors import (
-    InvalidInputs,
     JobDismissed,
     JobFailed,
     NoSuchArtifact,
@@ -51,7 +51,7 @@ def list_jobs(
     pages: PagesDep,
     identity: IdentityDep,
     limit: Annotated[int, Query(ge=1, le=1000)] = 20,
-    cursor: Annotated[str | None, Query(max_length=200)] = None,
+    cursor: CursorQuery = None,
     status: Annotated[JobStatus | None, Query()] = None,
     process_id: Annotated[str | None, Query(alias="processID", max_length=200)] = None,
     owner: Annotated[
@@ -66,15 +66,10 @@ def list_jobs(
 ) -> dict[str, Any] | HTMLResponse:
     scope = identity.owner_filter(owner)
     where = None if parent is None else JobFilter(parent_id=parent)
-    try:
-        page = store.list_jobs(
-            limit=limit, cursor=cursor, status=status, process_id=process_id, owner=scope,
-            where=where,
-        )  # fmt: skip
-    except ValueError as exc:
-        raise InvalidInputs(
-            [{"field": "cursor", "message": str(exc), "type": "value_error"}],
-        ) from exc
+    page = store.list_jobs(
+        limit=limit, cursor=cursor, status=status, process_id=process_id, owner=scope,
+        where=where,
+    )  # fmt: skip
     response.headers["Vary"] = "Accept"
     if wants_html(request):
         return views.job_list_page(

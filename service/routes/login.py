@@ -26,7 +26,7 @@ from service.deps import SettingsDep
 from service.pages import PagesDep
 from service.pages.forms import check_csrf, check_form_origin, read_form
 from service.pages.renderer import Pages
-from service.problems import PROBLEM_TYPES, problem_type_uri
+from service.problems import problem_document
 
 __all__ = ["router"]
 
@@ -109,13 +109,10 @@ async def log_in(request: Request, pages: PagesDep, settings: SettingsDep) -> Re
         return RedirectResponse(target, status_code=303)
     key = await auth.live_key(form.get("key", "").strip())
     if key is None:
-        status, title, _ = PROBLEM_TYPES["unauthorized"]
-        problem = {
-            "type": problem_type_uri("unauthorized"),
-            "title": title,
-            "status": status,
-            "detail": "This is not a live API key (unknown, or revoked). Check it and try again.",
-        }
+        problem = problem_document(
+            "unauthorized",
+            detail="This is not a live API key (unknown, or revoked). Check it and try again.",
+        )
         return _page(
             request, pages, keys_on=True, next_path=target,
             session_s=settings.session_seconds, problem=problem,

@@ -31,12 +31,11 @@ from service.errors import dexlab_problem
 from service.job_lookup import missing_job
 from service.pages import PagesDep, views
 from service.pages.forms import check_csrf, check_form_origin, read_form
-from service.problems import PROBLEM_TYPES, problem_type_uri
+from service.problems import problem_document
 from service.request_guard import json_depth
 from worker.errors import (
     CostLimitExceeded,
     InvalidInputs,
-    NoSuchProcess,
     QueueFull,
     QuotaExceeded,
 )
@@ -53,17 +52,6 @@ class _BadText(Exception):
 
 def _refuse_constant(name: str) -> Any:
     raise _BadText(f"{name} is not a JSON number")
-
-
-def _problem(slug: str, detail: str, **extra: Any) -> dict[str, Any]:
-    status, title, _ = PROBLEM_TYPES[slug]
-    return {
-        "type": problem_type_uri(slug),
-        "title": title,
-        "status": status,
-        "detail": detail,
-        **extra,
-    }
 
 
 def _parse_inputs(text: str, max_depth: int) -> dict[str, Any]:
@@ -101,9 +89,7 @@ async def run_process(
     identity: IdentityDep,
 ) -> RedirectResponse | HTMLResponse:
     check_form_origin(request)
-    definition = registry.get(process_id)
-    if definition is None:
-        raise NoSuchProcess(f"No process {process_id!r}; available: {', '.join(registry.ids())}.")
+    definition = registry.require(process_id)
     form = await read_form(request)
     check_csrf(request, form)
     text = form.get("inputs", "")
@@ -117,11 +103,13 @@ async def run_process(
             identity.name,
         )  # fmt: skip
     except _BadText as exc:
-        problem = _problem("malformed-request", f"The inputs are not valid JSON: {exc}.")
+        problem = problem_document(
+            "malformed-request", detail=f"The inputs are not valid JSON: {exc}."
+        )
     except InvalidInputs as exc:
-        problem = _problem("invalid-inputs", exc.detail, errors=exc.errors)
+        problem = problem_document("invalid-inputs", detail=exc.detail, errors=exc.errors)
     except CostLimitExceeded as exc:
-        problem = _problem("cost-limit-exceeded", exc.detail)
+        problem = problem_document("cost-limit-exceeded", detail=exc.detail)
     except (QuotaExceeded, QueueFull) as exc:  # the page says so, with Retry-After
         answer = dexlab_problem(request, exc)
         problem = json.loads(bytes(answer.body))

@@ -19,7 +19,7 @@ from service.preferences import requested_wait
 from service.routes.jobs import finished_document
 from service.schemas import RETENTION
 from worker.contract import JobRecord
-from worker.errors import NoSuchJob, NoSuchProcess
+from worker.errors import NoSuchJob
 from worker.store.base import JobStore
 
 __all__ = ["router"]
@@ -79,9 +79,7 @@ async def describe_process(
     pages: PagesDep,
     f: FormatQuery = None,
 ) -> dict[str, Any] | HTMLResponse:
-    definition = registry.get(process_id)
-    if definition is None:
-        raise NoSuchProcess(f"No process {process_id!r}; available: {', '.join(registry.ids())}.")
+    definition = registry.require(process_id)
     response.headers["Vary"] = "Accept"
     if wants_html(request):
         return await run_in_threadpool(views.process_page, request, pages, registry, definition)

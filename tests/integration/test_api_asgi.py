@@ -244,7 +244,8 @@ async def test_listing_paginates_and_filters(asgi_client: httpx.AsyncClient) -> 
     bad = await asgi_client.get("/v1/jobs", params={"status": "sleeping"})
     assert bad.status_code == 422 and bad.json()["errors"][0]["field"] == "query.status"
     bad = await asgi_client.get("/v1/jobs", params={"cursor": "garbage"})
-    assert bad.status_code == 422 and bad.json()["errors"][0]["field"] == "cursor"
+    assert bad.status_code == 422 and bad.json()["type"] == "/problems/invalid-request"
+    assert bad.json()["errors"][0]["field"] == "query.cursor"
 
 
 async def test_health_and_docs(asgi_client: httpx.AsyncClient) -> None:

@@ -93,8 +93,8 @@ def cursor_of(text: str) -> str:
 )
 def test_out_of_range_cursors_are_422_naming_the_cursor(client: httpx.Client, text: str) -> None:
     body = assert_problem(client.get("/v1/jobs", params={"cursor": cursor_of(text)}), 422,
-                          "invalid-inputs")  # fmt: skip
-    assert body["errors"][0]["field"] == "cursor"
+                          "invalid-request")  # fmt: skip
+    assert body["errors"][0]["field"] == "query.cursor"
 
 
 def test_the_largest_cursor_is_a_valid_empty_page(client: httpx.Client) -> None:

@@ -28,21 +28,16 @@ from service.ogc.schemas import ARTIFACT_CONTENT, RESULTS_SCHEMA, OgcJobList, Og
 from service.ogc.urls import public_urls
 from service.ogc.vocabulary import JSON, OGC_PREFIX, TAG
 from service.pages import FormatQuery, Pages, PagesDep, wants_html
+from service.parameters import CursorQuery
+from service.problems import parameter_error
 from worker.contract import JobStatus
 from worker.errors import NoSuchArtifact, NoSuchJob, NoSuchProcess, StorageError
 from worker.processes import ProcessRegistry
 from worker.store.base import JobStore
-from worker.store.sql import decode_cursor
 
 __all__ = ["router"]
 
 router = APIRouter(prefix=f"{OGC_PREFIX}/jobs", tags=[TAG])
-
-
-def _cursor(value: str | None) -> str | None:
-    if value is not None:
-        decode_cursor(value)  # ValueError names the parameter
-    return value
 
 
 def _interval(value: str | None) -> str | None:
@@ -95,11 +90,7 @@ def list_jobs(
     limit: Annotated[
         int, Query(ge=1, le=10000, description=f"Most jobs per page (at most {MAX_PAGE} sent).")
     ] = 10,
-    cursor: Annotated[
-        str | None,
-        Query(max_length=200, description="Where a `next` link continues."),
-        AfterValidator(_cursor),
-    ] = None,
+    cursor: CursorQuery = None,
     owner: Annotated[
         str | None,
         Query(max_length=64, description="Admin keys only: this key's jobs ('' = anonymous)."),
@@ -108,8 +99,9 @@ def list_jobs(
 ) -> Response:
     scope = identity.owner_filter(owner)
     unknown = sorted(set(processID or ()) - set(registry.ids()))
-    if unknown:
-        raise NoSuchProcess(f"No process {unknown[0]!r}; available: {', '.join(registry.ids())}.")
+    if unknown:  # the API definition lists the IDs: a bad value, like any other
+        unknown_id = NoSuchProcess.named(unknown[0], registry.ids())
+        raise parameter_error("query", "processID", unknown_id.detail)
     where = listing_filter(
         processID,
         status,

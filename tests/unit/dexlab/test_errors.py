@@ -56,6 +56,8 @@ def problem(slug: str, status: int, **extra: Any) -> dict[str, Any]:
         # OGC's exception types end in the same slugs.
         ({"type": f"{OGC}/no-such-job", "title": "x", "status": 404}, 404, NoSuchJob),
         ({"type": f"{OGC}/result-not-ready", "title": "x"}, 404, ResultNotReady),
+        # A bad parameter under /ogc/: the service's 400 (service.problems).
+        ({"type": f"{OGC}/invalid-parameter-value", "status": 400}, 400, InvalidInputs),
         # A failed job's results: its failure's own type and status, naming the job.
         (problem("time-limit-exceeded", 500, jobID="j1"), 500, JobFailed),
         (problem("storage-error", 503, jobID="j1"), 503, JobFailed),
