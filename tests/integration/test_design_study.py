@@ -84,7 +84,7 @@ def test_a_bad_objective_is_refused_and_dismissing_a_study_stops_its_chunks(
 ) -> None:
     slow = {**STUDY, "fixed": {**STUDY["fixed"], "grid": {"points_per_axis": 301},
                                "method": "orientation-sampling", "orientation_step_deg": 0.5},
-            "chunk_size": 1}  # fmt: skip
+            "engine": "per-design", "chunk_size": 1}  # fmt: skip
     with deployment("embedded", tmp_path, workers=1) as dep:
         client = dep.client
         typo = {**STUDY, "objectives": {"task_point[].d_z|min": "max"}}
@@ -110,7 +110,7 @@ def test_a_killed_chunk_is_retried_and_no_design_is_counted_twice(
 ) -> None:
     slow = {**STUDY, "fixed": {**STUDY["fixed"], "grid": {"points_per_axis": 201},
                                "method": "orientation-sampling", "orientation_step_deg": 1},
-            "chunk_size": 4}  # fmt: skip
+            "engine": "per-design", "chunk_size": 4}  # fmt: skip
     with deployment(backend, tmp_path, workers=2) as dep:
         client = dep.client
         study_id = client.post(URL, json={"inputs": slow}).json()["jobID"]

@@ -27,7 +27,7 @@ SECRETS = {
 API_KEYS = f"heavy:{SECRETS['heavy']},light:{SECRETS['light']},root:{SECRETS['root']}:admin"
 MAP_URL = "/v1/processes/planar3r-dexterity-map/execution"
 SMALL_URL = "/v1/processes/fourbar-grashof/execution"
-SMALL = {"lengths": [2, 7, 9, 6], "ground": 1}
+SMALL = {"lengths": [2, 7, 9, 6], "ground": 1, "plots": False}
 
 
 def heavy(tag: int) -> dict[str, object]:
