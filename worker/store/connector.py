@@ -24,6 +24,7 @@ module restates any of them (``tests/test_architecture_store.py`` checks it):
 from __future__ import annotations
 
 import threading
+from abc import ABC, abstractmethod
 from collections.abc import Iterator, Mapping, Sequence
 from contextlib import AbstractContextManager, suppress
 from typing import TYPE_CHECKING, Any, ClassVar
@@ -82,7 +83,7 @@ class ThreadConnections:
         self._local = threading.local()
 
 
-class SqlConnector:
+class SqlConnector(ABC):
     """Connections, transactions and statements of the SQL job store, for its topics."""
 
     #: Appended to a SELECT whose rows the transaction goes on to change.
@@ -95,13 +96,13 @@ class SqlConnector:
     outage: Outage
 
     # -- dialect hooks: connections and transactions ----------------------------------
+    @abstractmethod
     def _conn(self) -> Conn:
         """This thread's connection (autocommit; transactions are explicit)."""
-        raise NotImplementedError  # pragma: no cover - abstract
 
+    @abstractmethod
     def _write(self) -> AbstractContextManager[Conn]:
         """A write transaction yielding the connection."""
-        raise NotImplementedError  # pragma: no cover - abstract
 
     def _batch(self) -> AbstractContextManager[Conn]:
         """A write transaction whose statements may travel together: each result
@@ -116,10 +117,12 @@ class SqlConnector:
 
     def _lock_schema(self, conn: Conn) -> None:
         """Serialise concurrent migrations (a no-op where the transaction does it)."""
+        return None  # by default nothing to do (a dialect's hook may do more)
 
     def _lock_submissions(self, conn: Conn) -> None:
         """Serialise submissions until the transaction ends (a no-op where the
         transaction already holds the write lock)."""
+        return None  # by default nothing to do (a dialect's hook may do more)
 
     # -- dialect hooks: faults (see worker.store.retry) -------------------------------
     def classify(self, exc: BaseException) -> Fault:
@@ -128,9 +131,11 @@ class SqlConnector:
 
     def after_fault(self, fault: Fault) -> None:
         """Drop what a fault may have broken (a dialect closes a dead connection)."""
+        return None  # by default nothing to do (a dialect's hook may do more)
 
     def close(self) -> None:
         """Close this thread's connection."""
+        return None  # by default nothing to do (a dialect's hook may do more)
 
     @property
     def location(self) -> str:
@@ -138,6 +143,7 @@ class SqlConnector:
         return type(self).__name__
 
     # -- dialect hooks: where artifact bytes live -------------------------------------
+    @abstractmethod
     def _put_artifact_data(
         self,
         job_id: str,
@@ -151,15 +157,14 @@ class SqlConnector:
         given, during a migration).  With ``lease_token``, a store whose writers may
         resume after a pause (another machine) fences every write on the lease: False
         once the attempt no longer owns the job, and nothing more is written."""
-        raise NotImplementedError  # pragma: no cover - abstract
 
+    @abstractmethod
     def _artifact_data(self, job_id: str, attempt: int, name: str) -> Iterator[bytes]:
         """The bytes, a chunk at a time."""
-        raise NotImplementedError  # pragma: no cover - abstract
 
+    @abstractmethod
     def _drop_artifact_data(self, job_id: str, keep_attempt: int | None) -> None:
         """Remove the job's bytes: every attempt's, or all but ``keep_attempt``'s."""
-        raise NotImplementedError  # pragma: no cover - abstract
 
     # -- statement helpers -------------------------------------------------------------
     def _exec(self, conn: Conn, query: str, params: Sequence[Any] = ()) -> Any:
