@@ -11,6 +11,7 @@ import pytest
 from hypothesis import HealthCheck, assume, given, settings
 from hypothesis import strategies as st
 
+from tests.unit.families.planar_serial.kinematics.strategies import angles, designs, limits
 from worker.families.planar_serial.kinematics import (
     exact_orientation_dexterity,
     limited_orientation_dexterity,
@@ -37,22 +38,6 @@ PROPERTY = settings(
     max_examples=300, deadline=None, derandomize=True,
     suppress_health_check=[HealthCheck.filter_too_much],
 )  # fmt: skip
-
-lengths = st.floats(0.2, 5.0)
-designs = st.tuples(lengths, lengths, lengths)
-angles = st.floats(-math.pi, math.pi)
-
-
-@st.composite
-def limits(draw: st.DrawFn) -> np.ndarray:
-    """Random limits; each joint free with probability 1/4."""
-    rows = []
-    for _ in range(3):
-        if draw(st.integers(0, 3)) == 0:
-            rows.append([-math.pi, math.pi])
-        else:
-            rows.append(sorted((draw(angles), draw(angles))))
-    return np.array(rows)
 
 
 @st.composite
