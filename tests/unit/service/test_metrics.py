@@ -19,6 +19,7 @@ from service.app import create_app
 from service.config import Settings
 from service.metrics.job_collector import JobStoreCollector
 from service.request_id import request_id_for
+from tests.unit.service.asgi_app import asgi_client
 from worker.errors import StoreUnavailable
 from worker.store import open_store
 from worker.store.base import JobStore, NewJob
@@ -43,11 +44,8 @@ def value(found: Iterable[Sample], name: str, **labels: str) -> float:
 
 @pytest.fixture
 async def client(tmp_path: Path) -> AsyncIterator[httpx.AsyncClient]:
-    app = create_app(Settings(data_dir=tmp_path, workers=0))
-    async with app.router.lifespan_context(app):
-        transport = httpx.ASGITransport(app=app)
-        async with httpx.AsyncClient(transport=transport, base_url="http://dexlab.test") as c:
-            yield c
+    async with asgi_client(tmp_path) as c:
+        yield c
 
 
 async def test_metrics_label_requests_by_route_template_never_the_raw_path(

@@ -17,9 +17,8 @@ from typing import Any
 import httpx
 import pytest
 
-from service.app import create_app
-from service.config import Settings
 from service.ogc.vocabulary import INVALID_PARAMETER_VALUE
+from tests.unit.service.asgi_app import asgi_client
 
 pytestmark = pytest.mark.anyio
 
@@ -37,11 +36,8 @@ def anyio_backend() -> str:
 
 @pytest.fixture
 async def client(tmp_path: Path) -> AsyncIterator[httpx.AsyncClient]:
-    app = create_app(Settings(data_dir=tmp_path, workers=0))
-    async with app.router.lifespan_context(app):
-        transport = httpx.ASGITransport(app=app)
-        async with httpx.AsyncClient(transport=transport, base_url="http://dexlab.test") as c:
-            yield c
+    async with asgi_client(tmp_path) as c:
+        yield c
 
 
 def _resolve(schema: dict[str, Any], components: dict[str, Any]) -> dict[str, Any]:

@@ -14,8 +14,7 @@ import httpx
 import pytest
 from pydantic import BaseModel, ConfigDict, Field
 
-from service.app import create_app
-from service.config import Settings
+from tests.unit.service.asgi_app import asgi_client
 from worker.contract import JobContext, JobOutcome
 from worker.processes import FamilyInfo, ProcessDefinition, ProcessExample
 from worker.registry import build_registry, default_registry, family_packages
@@ -67,11 +66,8 @@ def anyio_backend() -> str:
 @pytest.fixture
 async def client(tmp_path: Path) -> AsyncIterator[httpx.AsyncClient]:
     registry = build_registry((*family_packages(), TOY))
-    app = create_app(Settings(data_dir=tmp_path, workers=0), registry=registry)
-    async with app.router.lifespan_context(app):
-        transport = httpx.ASGITransport(app=app)
-        async with httpx.AsyncClient(transport=transport, base_url="http://dexlab.test") as c:
-            yield c
+    async with asgi_client(tmp_path, registry) as c:
+        yield c
 
 
 async def test_a_new_family_has_its_own_tag_in_the_openapi_document(
