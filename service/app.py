@@ -24,6 +24,7 @@ from service.ogc.forwarded import ForwardedHeaders
 from service.ogc.router import ogc_router
 from service.openapi import install_openapi
 from service.pages import STATIC_DIR, STATIC_PREFIX, Pages
+from service.pages import routes as v1_pages
 from service.problems import PROBLEM_TYPES, problem_response
 from service.request_guard import RequestGuard
 from service.request_id import RequestId
@@ -183,6 +184,9 @@ def create_app(settings: Settings, *, registry: ProcessRegistry | None = None) -
     # Around it all: /metrics and each request's latency, then the request's ID (logs).
     metrics = install_metrics(app) if settings.metrics else None
     app.add_middleware(RequestId)
+    # Pages first: a page route matches only a request that asks for HTML, any other
+    # passes on to the JSON route of the same path (the /ogc router does the same).
+    app.include_router(v1_pages.router)
     app.include_router(execution_router(registry))
     app.include_router(processes.router)
     app.include_router(jobs.router)

@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import copy
 import json
+from collections.abc import Sequence
 from typing import Any
 
 from service.ogc.outputs import process_outputs
@@ -20,7 +21,7 @@ from service.ogc.urls import PublicUrls, self_and_alternate
 from service.ogc.vocabulary import JSON, REL_EXECUTE, REL_PROCESSES
 from worker.processes import ProcessDefinition
 
-__all__ = ["inline_refs", "process_description", "process_summary"]
+__all__ = ["inline_refs", "process_description", "process_list", "process_summary"]
 
 #: Most worked-example values quoted per input.
 _EXAMPLES_PER_INPUT = 3
@@ -142,3 +143,24 @@ def process_description(definition: ProcessDefinition, urls: PublicUrls) -> dict
         }
     )
     return document
+
+
+def process_list(
+    definitions: Sequence[ProcessDefinition], urls: PublicUrls, limit: int, offset: int
+) -> tuple[list[ProcessDefinition], dict[str, Any]]:
+    """processList.yaml: the page of ``limit`` summaries from ``offset`` (and the
+    definitions on it), with a ``next`` link while more follow."""
+    page = list(definitions[offset : offset + limit])
+    links = self_and_alternate(
+        f"{urls.ogc}/processes?limit={limit}&offset={offset}", "this page of processes"
+    )
+    if offset + limit < len(definitions):
+        links.append(
+            {
+                "href": f"{urls.ogc}/processes?limit={limit}&offset={offset + limit}",
+                "rel": "next",
+                "type": JSON,
+                "title": "the next page",
+            }
+        )
+    return page, {"processes": [process_summary(d, urls) for d in page], "links": links}

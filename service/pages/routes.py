@@ -1,0 +1,88 @@
+"""The pages at the JSON API's URLs: ``/``, ``/v1``, ``/v1/processes[/{id}]``,
+``/v1/jobs[/{id}[/results]]`` for a client that asks for HTML.
+
+Each is an :class:`~service.pages.html_route.HtmlRoute` on the same path as its JSON
+route (:mod:`service.routes`), which answers every other request.  The parameters are
+declared as the JSON route declares them, so a bad one is the same problem (as a page).
+"""
+
+from __future__ import annotations
+
+from typing import Annotated
+
+from fastapi import Query, Request
+from fastapi.responses import HTMLResponse
+
+from service.deps import Api, ApiDep, RegistryDep
+from service.job_lookup import find_job
+from service.pages import views
+from service.pages.html_route import page_router
+from service.pages.renderer import PagesDep
+from service.parameters import CursorQuery
+from worker.contract import JobStatus
+from worker.store.base import JobFilter
+
+__all__ = ["router"]
+
+router = page_router()
+
+
+@router.get("/")
+@router.get("/v1")
+def landing(request: Request, pages: PagesDep, registry: RegistryDep) -> HTMLResponse:
+    return views.landing_page(request, pages, registry)
+
+
+# The process pages read templates and method files: plain ``def``, in the threadpool.
+
+
+@router.get("/v1/processes")
+def process_list(request: Request, pages: PagesDep, registry: RegistryDep) -> HTMLResponse:
+    return views.process_list_page(request, pages, registry)
+
+
+@router.get("/v1/processes/{process_id}")
+def process(
+    process_id: str, request: Request, pages: PagesDep, registry: RegistryDep
+) -> HTMLResponse:
+    definition = registry.require(process_id)
+    return views.process_page(request, pages, registry, definition)
+
+
+@router.get("/v1/jobs")
+def job_list(
+    request: Request,
+    api: ApiDep,
+    limit: Annotated[int, Query(ge=1, le=1000)] = 20,
+    cursor: CursorQuery = None,
+    status: Annotated[JobStatus | None, Query()] = None,
+    process_id: Annotated[str | None, Query(alias="processID", max_length=200)] = None,
+    owner: Annotated[str | None, Query(max_length=64)] = None,
+    parent: Annotated[str | None, Query(max_length=64)] = None,
+) -> HTMLResponse:
+    where = None if parent is None else JobFilter(parent_id=parent)
+    page = api.store.list_jobs(
+        limit=limit, cursor=cursor, status=status, process_id=process_id,
+        owner=api.identity.owner_filter(owner), where=where,
+    )  # fmt: skip
+    return views.job_list_page(
+        request, api.pages, api.registry, page, limit=limit, status=status,
+        process_id=process_id, owner=owner,
+    )  # fmt: skip
+
+
+def _job_page(request: Request, api: Api, job_id: str) -> HTMLResponse:
+    job = find_job(api.store, job_id, api.identity.owner_scope)
+    result = api.store.get_result(job.job_id) if job.status is JobStatus.SUCCESSFUL else None
+    return views.job_page(request, api.pages, api.registry, job, result)
+
+
+@router.get("/v1/jobs/{job_id}")
+def job(job_id: str, request: Request, api: ApiDep) -> HTMLResponse:
+    return _job_page(request, api, job_id)
+
+
+@router.get("/v1/jobs/{job_id}/results")
+def results(job_id: str, request: Request, api: ApiDep) -> HTMLResponse:
+    """The job's page shows its results (or why there are none)."""
+    return _job_page(request, api, job_id)
