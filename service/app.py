@@ -44,6 +44,7 @@ from service.routes.process_operations import (
     family_tag_documents,
     family_tags,
 )
+from service.schemas import ProblemTypeDocument
 from worker.dispatch import Dispatcher, make_dispatcher
 from worker.pool import WorkerPool
 from worker.processes import ProcessRegistry
@@ -203,18 +204,18 @@ def create_app(settings: Settings, *, registry: ProcessRegistry | None = None) -
     app.include_router(login.router)
     app.mount(STATIC_PREFIX, StaticFiles(directory=STATIC_DIR), name="pages-static")
 
-    @app.get("/problems/{slug}", tags=["meta"], summary="What a problem type means")
-    def problem_type(slug: str) -> JSONResponse:
+    @app.get(
+        "/problems/{slug}",
+        tags=["meta"],
+        summary="What a problem type means",
+        response_model=ProblemTypeDocument,
+    )
+    def problem_type(slug: str) -> ProblemTypeDocument | JSONResponse:
         if slug not in PROBLEM_TYPES:
             return problem_response("not-found", detail=f"No problem type {slug!r}.")
         status, title, description = PROBLEM_TYPES[slug]
-        return JSONResponse(
-            {
-                "type": f"/problems/{slug}",
-                "title": title,
-                "status": status,
-                "description": description,
-            }
+        return ProblemTypeDocument(
+            type=f"/problems/{slug}", title=title, status=status, description=description
         )
 
     return app

@@ -26,10 +26,14 @@ __all__ = [
     "JobResult",
     "Landing",
     "Link",
+    "Liveness",
+    "LocalPool",
+    "ProblemTypeDocument",
     "ProcessDescription",
     "ProcessList",
     "ProcessSummary",
     "ProgressEvent",
+    "Readiness",
     "ResultsDocument",
     "StatusDocument",
     "stream_document_schemas",
@@ -232,6 +236,40 @@ class Landing(_Document):
     title: str
     description: str
     links: list[Link]
+
+
+class Liveness(_Document):
+    """``GET /health/live``: the process answers."""
+
+    status: Literal["live"]
+
+
+class LocalPool(_Document):
+    """This process's worker pool: its size and how many of its workers are alive."""
+
+    size: int
+    alive: int
+
+
+class Readiness(_Document):
+    """``GET /health/ready`` (200): the store takes a write and a worker is up."""
+
+    status: Literal["ready"]
+    store: Literal["ok"]
+    live_workers: int
+    local_pool: LocalPool | None = Field(
+        description="This process's worker pool; null where no pool runs here (a broker's "
+        "workers, or DEXLAB_WORKERS=0)."
+    )
+
+
+class ProblemTypeDocument(_Document):
+    """``GET /problems/{slug}``: what a problem type means."""
+
+    type: str
+    title: str
+    status: int
+    description: str
 
 
 #: The documents no route returns as its response model (the progress stream's events):

@@ -48,6 +48,7 @@ router = APIRouter(prefix=OGC_PREFIX, tags=[TAG])
     "/",
     summary="Landing page",
     response_model=OgcLandingPage,
+    response_description="The landing page.",
     response_model_exclude_unset=True,
 )
 def landing(request: Request, response: Response, f: FormatQuery = None) -> OgcLandingPage:
@@ -71,6 +72,7 @@ def landing_without_slash(
     "/conformance",
     summary="The conformance classes this server meets",
     response_model=OgcConfClasses,
+    response_description="The conformance declaration.",
     response_model_exclude_unset=True,
 )
 def conformance(
@@ -90,6 +92,7 @@ ProcessListOffset = Annotated[
     "/processes",
     summary="The processes",
     response_model=OgcProcessList,
+    response_description="Process summaries.",
     response_model_exclude_unset=True,
 )
 def list_processes(
@@ -109,6 +112,7 @@ def list_processes(
     "/processes/{processID}",
     summary="A process: its inputs and outputs",
     response_model=OgcProcess,
+    response_description="The OGC process description.",
     response_model_exclude_unset=True,
 )
 def describe_process(

@@ -80,7 +80,7 @@ def _page(
     )
 
 
-@router.get("/login", response_model=None)
+@router.get("/login")
 async def login_page(
     request: Request,
     identity: IdentityDep,
@@ -98,7 +98,7 @@ async def login_page(
     )
 
 
-@router.post("/login", response_model=None)
+@router.post("/login")
 async def log_in(request: Request, pages: PagesDep, settings: SettingsDep) -> Response:
     check_form_origin(request)
     form = await read_form(request)
@@ -131,7 +131,7 @@ async def log_in(request: Request, pages: PagesDep, settings: SettingsDep) -> Re
     return response
 
 
-@router.post("/logout", response_model=None)
+@router.post("/logout")
 async def log_out(request: Request, identity: IdentityDep) -> Response:
     check_form_origin(request)
     form = await read_form(request)

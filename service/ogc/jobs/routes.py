@@ -35,6 +35,7 @@ router = APIRouter(prefix=f"{OGC_PREFIX}/jobs", tags=[TAG])
     "",
     summary="The jobs, newest first",
     response_model=OgcJobList,
+    response_description="A page of jobs.",
     response_model_exclude_unset=True,
 )
 def list_jobs(
@@ -53,6 +54,7 @@ def list_jobs(
     summary="A job's status",
     response_model=OgcStatusInfo,
     response_model_exclude_unset=True,
+    response_description="The job's status information.",
 )
 def get_job(
     jobID: str, request: Request, response: Response, api: ApiDep, f: FormatQuery = None
@@ -68,6 +70,7 @@ def get_job(
     "finished one's results are deleted)",
     response_model=OgcStatusInfo,
     response_model_exclude_unset=True,
+    response_description="The job's status information.",
 )
 def dismiss_job(jobID: str, request: Request, api: ApiDep) -> OgcStatusInfo:
     job = api.store.dismiss(jobID, owner=api.identity.owner_scope)
