@@ -23,21 +23,12 @@ from service.metrics import install_metrics
 from service.ogc.forwarded import ForwardedHeaders
 from service.ogc.router import ogc_router
 from service.openapi import install_openapi
-from service.pages import STATIC_DIR, STATIC_PREFIX, Pages
+from service.pages import STATIC_DIR, STATIC_PREFIX, Pages, actions, login, methods
 from service.pages import routes as v1_pages
 from service.problems import PROBLEM_TYPES, problem_response
 from service.request_guard import RequestGuard
 from service.request_id import RequestId
-from service.routes import (
-    health,
-    job_events,
-    jobs,
-    landing,
-    login,
-    methods,
-    page_actions,
-    processes,
-)
+from service.routes import health, job_events, jobs, landing, processes
 from service.routes.process_operations import (
     execution_router,
     family_of,
@@ -200,7 +191,7 @@ def create_app(settings: Settings, *, registry: ProcessRegistry | None = None) -
     )
     app.include_router(job_events.router)
     app.include_router(methods.router)
-    app.include_router(page_actions.router)
+    app.include_router(actions.router)
     app.include_router(login.router)
     app.mount(STATIC_PREFIX, StaticFiles(directory=STATIC_DIR), name="pages-static")
 
