@@ -8,19 +8,16 @@ declared as the JSON route declares them, so a bad one is the same problem (as a
 
 from __future__ import annotations
 
-from typing import Annotated
-
-from fastapi import Query, Request
+from fastapi import Request
 from fastapi.responses import HTMLResponse
 
 from service.deps import Api, ApiDep, RegistryDep
-from service.job_lookup import find_job
+from service.job_lookup import find_job, list_jobs
 from service.pages import views
 from service.pages.html_route import page_router
 from service.pages.renderer import PagesDep
-from service.parameters import CursorQuery
+from service.parameters import JobListQueryDep
 from worker.contract import JobStatus
-from worker.store.base import JobFilter
 
 __all__ = ["router"]
 
@@ -50,24 +47,11 @@ def process(
 
 
 @router.get("/v1/jobs")
-def job_list(
-    request: Request,
-    api: ApiDep,
-    limit: Annotated[int, Query(ge=1, le=1000)] = 20,
-    cursor: CursorQuery = None,
-    status: Annotated[JobStatus | None, Query()] = None,
-    process_id: Annotated[str | None, Query(alias="processID", max_length=200)] = None,
-    owner: Annotated[str | None, Query(max_length=64)] = None,
-    parent: Annotated[str | None, Query(max_length=64)] = None,
-) -> HTMLResponse:
-    where = None if parent is None else JobFilter(parent_id=parent)
-    page = api.store.list_jobs(
-        limit=limit, cursor=cursor, status=status, process_id=process_id,
-        owner=api.identity.owner_filter(owner), where=where,
-    )  # fmt: skip
+def job_list(request: Request, api: ApiDep, query: JobListQueryDep) -> HTMLResponse:
+    page = list_jobs(api.store, api.identity, query)
     return views.job_list_page(
-        request, api.pages, api.registry, page, limit=limit, status=status,
-        process_id=process_id, owner=owner,
+        request, api.pages, api.registry, page, limit=query.limit, status=query.status,
+        process_id=query.process_id, owner=query.owner,
     )  # fmt: skip
 
 

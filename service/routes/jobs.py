@@ -9,17 +9,17 @@ retention ended) is 410 ``job-expired`` for a while, then 404
 from __future__ import annotations
 
 from typing import Annotated
-from urllib.parse import urlencode
 
-from fastapi import APIRouter, Header, Query, Response
+from fastapi import APIRouter, Header, Response
 from fastapi.responses import StreamingResponse
 
 from service.auth import Identity
 from service.deps import ApiDep
 from service.documents import artifact_headers, results_document, status_document
 from service.job_lookup import find_job, missing_job
+from service.job_lookup import list_jobs as find_jobs
 from service.pages import FormatQuery
-from service.parameters import CursorQuery
+from service.parameters import JobListQueryDep
 from service.schemas import JobList, Link, ResultsDocument, StatusDocument
 from worker.contract import JobRecord, JobStatus
 from worker.errors import (
@@ -29,7 +29,7 @@ from worker.errors import (
     ResultNotReady,
     StorageError,
 )
-from worker.store.base import JobFilter, JobStore, StoredArtifact
+from worker.store.base import JobStore, StoredArtifact
 
 __all__ = ["finished_document", "router"]
 
@@ -54,41 +54,13 @@ def _job(store: JobStore, job_id: str, owner: str | None = None) -> JobRecord:
     response_model_exclude_unset=True,
 )
 def list_jobs(
-    response: Response,
-    api: ApiDep,
-    limit: Annotated[int, Query(ge=1, le=1000)] = 20,
-    cursor: CursorQuery = None,
-    status: Annotated[JobStatus | None, Query()] = None,
-    process_id: Annotated[str | None, Query(alias="processID", max_length=200)] = None,
-    owner: Annotated[
-        str | None,
-        Query(max_length=64, description="Admin keys only: this key's jobs ('' = anonymous)."),
-    ] = None,
-    parent: Annotated[
-        str | None,
-        Query(max_length=64, description="A design study's jobID: list its chunk jobs."),
-    ] = None,
-    f: FormatQuery = None,
+    response: Response, api: ApiDep, query: JobListQueryDep, f: FormatQuery = None
 ) -> JobList:
-    scope = api.identity.owner_filter(owner)
-    where = None if parent is None else JobFilter(parent_id=parent)
-    page = api.store.list_jobs(
-        limit=limit, cursor=cursor, status=status, process_id=process_id, owner=scope,
-        where=where,
-    )  # fmt: skip
+    page = find_jobs(api.store, api.identity, query)
     response.headers["Vary"] = "Accept"
     links = [Link(href="/v1/jobs", rel="self", type=JSON)]
     if page.next_cursor:
-        query = f"limit={limit}&cursor={page.next_cursor}"
-        if status is not None:
-            query += f"&status={status.value}"
-        if process_id is not None:
-            query += f"&processID={process_id}"
-        if owner is not None:
-            query += f"&{urlencode({'owner': owner})}"
-        if parent is not None:
-            query += f"&{urlencode({'parent': parent})}"
-        links.append(Link(href=f"/v1/jobs?{query}", rel="next", type=JSON))
+        links.append(Link(href=query.next_href(page.next_cursor), rel="next", type=JSON))
     return JobList(
         jobs=[_status(j, api.identity) for j in page.jobs],
         next_cursor=page.next_cursor,
