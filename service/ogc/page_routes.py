@@ -61,7 +61,7 @@ def process_list_page(
 ) -> HTMLResponse:
     urls = public_urls(request)
     page, document = process_list(list(registry), urls, limit, offset)
-    return ogc_pages.process_list_page(request, pages, urls, page, document)
+    return ogc_pages.process_list_page(request, pages, urls, page, as_json(document))
 
 
 @router.get("/processes/{processID}")
@@ -71,12 +71,12 @@ def process_page(
     definition = definition_of(registry, processID)
     urls = public_urls(request)
     document = process_description(definition, urls)
-    return ogc_pages.process_page(request, pages, registry, urls, definition, document)
+    return ogc_pages.process_page(request, pages, registry, urls, definition, as_json(document))
 
 
 @router.get("/jobs")
 def job_list_page(request: Request, api: ApiDep, query: JobListQueryDep) -> HTMLResponse:
-    document = job_list_document(request, api, query)
+    document = as_json(job_list_document(request, api, query))
     return ogc_pages.job_list_page(
         request, api.pages, api.registry, public_urls(request), document, query.limit
     )
@@ -88,7 +88,7 @@ def job_page(jobID: str, request: Request, api: ApiDep) -> HTMLResponse:
     urls = public_urls(request)
     result = api.store.get_result(jobID) if job.status is JobStatus.SUCCESSFUL else None
     return ogc_pages.job_page(
-        request, api.pages, api.registry, urls, job, result, status_info(job, urls)
+        request, api.pages, api.registry, urls, job, result, as_json(status_info(job, urls))
     )
 
 
@@ -101,8 +101,9 @@ def results_page(jobID: str, request: Request, api: ApiDep) -> HTMLResponse:
     definition = api.registry.get(job.process_id)
     outputs = process_outputs(definition) if definition is not None else {}
     selected = select_outputs(job, result, outputs, presentation, api.store)
+    document = as_json(status_info(job, urls))
     return ogc_pages.results_page(
-        request, api.pages, api.registry, urls, job, result, status_info(job, urls), selected,
+        request, api.pages, api.registry, urls, job, result, document, selected,
         presentation.response,
     )  # fmt: skip
 

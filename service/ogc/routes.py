@@ -105,7 +105,7 @@ def list_processes(
 ) -> OgcProcessList:
     _, document = process_list(list(registry), public_urls(request), limit, offset)
     response.headers.update(ogc_pages.NEGOTIATED)
-    return OgcProcessList.model_validate(document)
+    return document
 
 
 @router.get(
@@ -124,7 +124,7 @@ def describe_process(
 ) -> OgcProcess:
     definition = definition_of(registry, processID)
     response.headers.update(ogc_pages.NEGOTIATED)
-    return OgcProcess.model_validate(process_description(definition, public_urls(request)))
+    return process_description(definition, public_urls(request))
 
 
 _EXECUTE_RESPONSES: dict[int | str, dict[str, Any]] = {
@@ -199,7 +199,7 @@ async def execute(
     if mode.synchronous:  # waited in vain: the status as it is now
         job = await run_in_threadpool(_current, api.store, job)
     response.headers.update(headers)
-    return OgcStatusInfo.model_validate(status_info(job, urls))
+    return status_info(job, urls)
 
 
 def _current(store: JobStore, job: JobRecord) -> JobRecord:

@@ -4,7 +4,7 @@ the page route share) and the page of jobs they select."""
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Annotated, Any, Literal
+from typing import Annotated, Literal
 
 from fastapi import Depends, Query, Request
 from pydantic import AfterValidator, StringConstraints
@@ -12,6 +12,7 @@ from pydantic import AfterValidator, StringConstraints
 from service.deps import Api
 from service.ogc.jobs.documents import job_list
 from service.ogc.jobs.query import MAX_PAGE, listing_filter, page_query, parse_datetime_interval
+from service.ogc.schemas import OgcJobList
 from service.ogc.urls import public_urls
 from service.parameters import CursorQuery
 from service.problems import parameter_error
@@ -90,7 +91,7 @@ async def job_list_query(
 JobListQueryDep = Annotated[JobListQuery, Depends(job_list_query)]
 
 
-def job_list_document(request: Request, api: Api, query: JobListQuery) -> dict[str, Any]:
+def job_list_document(request: Request, api: Api, query: JobListQuery) -> OgcJobList:
     """jobList.yaml: the page of the caller's jobs (an admin's: ``owner``'s) the query
     selects, with ``self`` and ``next`` links that repeat its parameters."""
     scope = api.identity.owner_filter(query.owner)

@@ -46,7 +46,7 @@ def list_jobs(
     f: FormatQuery = None,
 ) -> OgcJobList:
     response.headers.update(ogc_pages.NEGOTIATED)
-    return OgcJobList.model_validate(job_list_document(request, api, query))
+    return job_list_document(request, api, query)
 
 
 @router.get(
@@ -61,7 +61,7 @@ def get_job(
 ) -> OgcStatusInfo:
     job = find_job(api.store, jobID, api.identity.owner_scope)
     response.headers.update(ogc_pages.NEGOTIATED)
-    return OgcStatusInfo.model_validate(status_info(job, public_urls(request)))
+    return status_info(job, public_urls(request))
 
 
 @router.delete(
@@ -76,7 +76,7 @@ def dismiss_job(jobID: str, request: Request, api: ApiDep) -> OgcStatusInfo:
     job = api.store.dismiss(jobID, owner=api.identity.owner_scope)
     if job is None:
         raise missing_job(api.store, jobID, api.identity.owner_scope)
-    return OgcStatusInfo.model_validate(status_info(job, public_urls(request)))
+    return status_info(job, public_urls(request))
 
 
 # The results and outputs are not one document: the execute request chose their form
