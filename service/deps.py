@@ -1,8 +1,10 @@
 """FastAPI dependencies: the resources the lifespan built, handed to route handlers.
 
 A handler that needs several of them takes one :data:`ApiDep`: the frozen :class:`Api`
-holding the store, the registry, the settings, the dispatcher, the pages and the
-caller's identity.  A handler that needs one takes its own alias (``StoreDep`` ...).
+holding the store, the registry, the settings, the dispatcher, the pages, the local
+worker pool and the caller's identity.  A handler that needs the registry or the
+settings alone (the process list and descriptions, the conformance declaration) takes
+:data:`RegistryDep` or :data:`SettingsDep`.
 
 Each is a coroutine: FastAPI runs a plain ``def`` dependency in the threadpool, so a
 route that needs no store would otherwise wait for a thread while every thread waits
@@ -24,15 +26,7 @@ from worker.pool import WorkerPool
 from worker.processes import ProcessRegistry
 from worker.store.base import JobStore
 
-__all__ = [
-    "Api",
-    "ApiDep",
-    "DispatcherDep",
-    "PoolDep",
-    "RegistryDep",
-    "SettingsDep",
-    "StoreDep",
-]
+__all__ = ["Api", "ApiDep", "RegistryDep", "SettingsDep"]
 
 
 @dataclass(frozen=True, slots=True)
@@ -45,6 +39,7 @@ class Api:
     dispatcher: Dispatcher
     pages: Pages
     identity: Identity
+    pool: WorkerPool | None
 
 
 async def get_api(request: Request) -> Api:
@@ -56,12 +51,8 @@ async def get_api(request: Request) -> Api:
         dispatcher=state.dispatcher,
         pages=state.pages,
         identity=get_identity(request),
+        pool=state.pool,
     )
-
-
-async def get_store(request: Request) -> JobStore:
-    store: JobStore = request.app.state.store
-    return store
 
 
 async def get_registry(request: Request) -> ProcessRegistry:
@@ -74,19 +65,6 @@ async def get_settings(request: Request) -> ServiceSettings:
     return settings
 
 
-async def get_pool(request: Request) -> WorkerPool | None:
-    pool: WorkerPool | None = request.app.state.pool
-    return pool
-
-
-async def get_dispatcher(request: Request) -> Dispatcher:
-    dispatcher: Dispatcher = request.app.state.dispatcher
-    return dispatcher
-
-
 ApiDep = Annotated[Api, Depends(get_api)]
-StoreDep = Annotated[JobStore, Depends(get_store)]
 RegistryDep = Annotated[ProcessRegistry, Depends(get_registry)]
 SettingsDep = Annotated[ServiceSettings, Depends(get_settings)]
-PoolDep = Annotated[WorkerPool | None, Depends(get_pool)]
-DispatcherDep = Annotated[Dispatcher, Depends(get_dispatcher)]

@@ -13,7 +13,7 @@ from fastapi import Request
 from fastapi.responses import HTMLResponse
 from starlette.responses import Response
 
-from service.deps import Api, ApiDep, RegistryDep, SettingsDep
+from service.deps import Api, ApiDep
 from service.documents import as_json
 from service.job_lookup import find_job
 from service.ogc import pages as ogc_pages
@@ -46,32 +46,29 @@ def landing(request: Request, pages: PagesDep) -> HTMLResponse:
 
 
 @router.get("/conformance")
-def conformance(request: Request, pages: PagesDep, settings: SettingsDep) -> HTMLResponse:
-    document = as_json(conformance_document(settings, request.app.openapi_version))
-    return ogc_pages.conformance_page(request, pages, public_urls(request), document)
+def conformance(request: Request, api: ApiDep) -> HTMLResponse:
+    document = as_json(conformance_document(api.settings, request.app.openapi_version))
+    return ogc_pages.conformance_page(request, api.pages, public_urls(request), document)
 
 
 @router.get("/processes")
 def process_list_page(
     request: Request,
-    pages: PagesDep,
-    registry: RegistryDep,
+    api: ApiDep,
     limit: ProcessListLimit = 10,
     offset: ProcessListOffset = 0,
 ) -> HTMLResponse:
     urls = public_urls(request)
-    page, document = process_list(list(registry), urls, limit, offset)
-    return ogc_pages.process_list_page(request, pages, urls, page, as_json(document))
+    page, document = process_list(list(api.registry), urls, limit, offset)
+    return ogc_pages.process_list_page(request, api.pages, urls, page, as_json(document))
 
 
 @router.get("/processes/{processID}")
-def process_page(
-    processID: str, request: Request, pages: PagesDep, registry: RegistryDep
-) -> HTMLResponse:
-    definition = definition_of(registry, processID)
+def process_page(processID: str, request: Request, api: ApiDep) -> HTMLResponse:
+    definition = definition_of(api.registry, processID)
     urls = public_urls(request)
-    document = process_description(definition, urls)
-    return ogc_pages.process_page(request, pages, registry, urls, definition, as_json(document))
+    document = as_json(process_description(definition, urls))
+    return ogc_pages.process_page(request, api.pages, api.registry, urls, definition, document)
 
 
 @router.get("/jobs")

@@ -11,11 +11,10 @@ from __future__ import annotations
 from fastapi import Request
 from fastapi.responses import HTMLResponse
 
-from service.deps import Api, ApiDep, RegistryDep
+from service.deps import Api, ApiDep
 from service.job_lookup import find_job, list_jobs
 from service.pages import views
 from service.pages.html_route import page_router
-from service.pages.renderer import PagesDep
 from service.parameters import JobListQueryDep
 from worker.contract import JobStatus
 
@@ -26,24 +25,22 @@ router = page_router()
 
 @router.get("/")
 @router.get("/v1")
-def landing(request: Request, pages: PagesDep, registry: RegistryDep) -> HTMLResponse:
-    return views.landing_page(request, pages, registry)
+def landing(request: Request, api: ApiDep) -> HTMLResponse:
+    return views.landing_page(request, api.pages, api.registry)
 
 
 # The process pages read templates and method files: plain ``def``, in the threadpool.
 
 
 @router.get("/v1/processes")
-def process_list(request: Request, pages: PagesDep, registry: RegistryDep) -> HTMLResponse:
-    return views.process_list_page(request, pages, registry)
+def process_list(request: Request, api: ApiDep) -> HTMLResponse:
+    return views.process_list_page(request, api.pages, api.registry)
 
 
 @router.get("/v1/processes/{process_id}")
-def process(
-    process_id: str, request: Request, pages: PagesDep, registry: RegistryDep
-) -> HTMLResponse:
-    definition = registry.require(process_id)
-    return views.process_page(request, pages, registry, definition)
+def process(process_id: str, request: Request, api: ApiDep) -> HTMLResponse:
+    definition = api.registry.require(process_id)
+    return views.process_page(request, api.pages, api.registry, definition)
 
 
 @router.get("/v1/jobs")

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from fastapi import APIRouter, Response
 
-from service.deps import PoolDep, SettingsDep, StoreDep
+from service.deps import ApiDep
 from service.problems import problem_response
 from service.schemas import Liveness, LocalPool, Readiness
 from worker.errors import StorageError, StorageFull, StoreUnavailable
@@ -24,9 +24,10 @@ async def live() -> Liveness:
     summary="The store answers and can be written, and at least one worker is up",
     response_model=Readiness,
 )
-def ready(store: StoreDep, settings: SettingsDep, pool: PoolDep) -> Readiness | Response:
+def ready(api: ApiDep) -> Readiness | Response:
     """200 when the store takes a write and a worker is up; else 503 ``not-ready``.  The
     store is tried once (no retry window), so a probe learns of an outage at once."""
+    store, pool = api.store, api.pool
     try:
         store.check_storage()  # answers, takes a write lock, has room for results
     except StoreUnavailable as exc:
@@ -38,7 +39,7 @@ def ready(store: StoreDep, settings: SettingsDep, pool: PoolDep) -> Readiness | 
         return problem_response(
             "not-ready", detail=exc.detail, store=state, headers={"Retry-After": "5"}
         )
-    workers = store.live_workers(within_s=3 * settings.heartbeat_seconds + 1.0)
+    workers = store.live_workers(within_s=3 * api.settings.heartbeat_seconds + 1.0)
     local_pool = None if pool is None else LocalPool(size=pool.size, alive=pool.alive())
     if not workers or (local_pool is not None and not local_pool.alive):
         return problem_response(
