@@ -1,6 +1,6 @@
-"""Query parameters declared once: those both surfaces share, and the ``/v1`` job
-list's (its JSON route and its page take the same), validated where FastAPI validates
-parameters (so a bad value is answered like any other:
+"""Parameters declared once: the query and header parameters both surfaces share, and
+the ``/v1`` job list's (its JSON route and its page take the same), validated where
+FastAPI validates parameters (so a bad value is answered like any other:
 :func:`service.problems.parameter_problem`)."""
 
 from __future__ import annotations
@@ -9,13 +9,13 @@ from dataclasses import dataclass
 from typing import Annotated
 from urllib.parse import urlencode
 
-from fastapi import Depends, Query
+from fastapi import Depends, Header, Query
 from pydantic import AfterValidator
 
 from worker.contract import JobStatus
 from worker.store.sql import decode_cursor
 
-__all__ = ["CursorQuery", "JobListQuery", "JobListQueryDep"]
+__all__ = ["CursorQuery", "IdempotencyKey", "JobListQuery", "JobListQueryDep", "PreferHeader"]
 
 
 def _cursor(value: str | None) -> str | None:
@@ -23,6 +23,12 @@ def _cursor(value: str | None) -> str | None:
         decode_cursor(value)  # ValueError names the parameter
     return value
 
+
+#: The execute requests' ``Idempotency-Key`` and ``Prefer`` headers (both surfaces).
+IdempotencyKey = Annotated[
+    str | None, Header(alias="Idempotency-Key", min_length=1, max_length=255)
+]
+PreferHeader = Annotated[str | None, Header(max_length=255)]
 
 #: ``cursor``: where a ``next`` link continues; only a cursor this service issued.
 CursorQuery = Annotated[

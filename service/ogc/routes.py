@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from typing import Annotated, Any
 
-from fastapi import APIRouter, Header, Query, Request
+from fastapi import APIRouter, Query, Request
 from starlette.concurrency import run_in_threadpool
 from starlette.responses import Response
 
@@ -34,6 +34,7 @@ from service.ogc.schemas import (
 from service.ogc.urls import public_urls
 from service.ogc.vocabulary import JSON, OGC_PREFIX, TAG
 from service.pages import FormatQuery
+from service.parameters import IdempotencyKey, PreferHeader
 from worker.contract import JobRecord
 from worker.store.base import JobStore
 
@@ -156,10 +157,8 @@ async def execute(
     request: Request,
     response: Response,
     api: ApiDep,
-    idempotency_key: Annotated[
-        str | None, Header(alias="Idempotency-Key", min_length=1, max_length=255)
-    ] = None,
-    prefer: Annotated[str | None, Header(max_length=255)] = None,
+    idempotency_key: IdempotencyKey = None,
+    prefer: PreferHeader = None,
 ) -> OgcStatusInfo | Response:
     """Create a job.  With no `Prefer`, a process that can run synchronously (its
     `sync-execute`, within its `sync_cost_limit`) answers with the results (waiting at

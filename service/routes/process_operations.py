@@ -16,13 +16,8 @@ from fastapi import APIRouter, Request, Response
 from fastapi.responses import JSONResponse
 
 from service.deps import ApiDep
-from service.routes.processes import (
-    EXECUTE_RESPONSES,
-    ExecuteRequest,
-    IdempotencyKey,
-    PreferHeader,
-    execute,
-)
+from service.parameters import IdempotencyKey, PreferHeader
+from service.routes.processes import EXECUTE_RESPONSES, ExecuteRequest, execute
 from service.schemas import StatusDocument
 from worker.processes import ProcessDefinition, ProcessRegistry
 

@@ -2,9 +2,9 @@
 
 from __future__ import annotations
 
-from typing import Annotated, Any
+from typing import Any
 
-from fastapi import APIRouter, Header, Request, Response
+from fastapi import APIRouter, Request, Response
 from fastapi.responses import JSONResponse
 from pydantic import BaseModel, ConfigDict, Field
 from starlette.concurrency import run_in_threadpool
@@ -14,6 +14,7 @@ from service.documents import as_json, job_href, status_document
 from service.execution import submit_job, wait_while_connected
 from service.job_watcher import JobWatcher
 from service.pages import FormatQuery
+from service.parameters import IdempotencyKey, PreferHeader
 from service.preferences import requested_wait
 from service.routes.jobs import finished_document
 from service.schemas import (
@@ -32,8 +33,6 @@ from worker.store.base import JobStore
 __all__ = [
     "EXECUTE_RESPONSES",
     "ExecuteRequest",
-    "IdempotencyKey",
-    "PreferHeader",
     "execute",
     "router",
 ]
@@ -111,11 +110,6 @@ EXECUTE_RESPONSES: dict[int | str, dict[str, Any]] = {
         "the request asked for (`Preference-Applied`).",
     }
 }
-
-IdempotencyKey = Annotated[
-    str | None, Header(alias="Idempotency-Key", min_length=1, max_length=255)
-]
-PreferHeader = Annotated[str | None, Header(max_length=255)]
 
 
 @router.post(
