@@ -23,26 +23,19 @@ from service.metrics import install_metrics
 from service.ogc.forwarded import ForwardedHeaders
 from service.ogc.router import ogc_router
 from service.openapi import install_openapi
-from service.pages import STATIC_DIR, STATIC_PREFIX, Pages
+from service.pages import STATIC_DIR, STATIC_PREFIX, Pages, actions, login, methods
+from service.pages import routes as v1_pages
 from service.problems import PROBLEM_TYPES, problem_response
 from service.request_guard import RequestGuard
 from service.request_id import RequestId
-from service.routes import (
-    health,
-    job_events,
-    jobs,
-    landing,
-    login,
-    methods,
-    page_actions,
-    processes,
-)
+from service.routes import health, job_events, jobs, landing, processes
 from service.routes.process_operations import (
     execution_router,
     family_of,
     family_tag_documents,
     family_tags,
 )
+from service.schemas import ProblemTypeDocument
 from worker.dispatch import Dispatcher, make_dispatcher
 from worker.pool import WorkerPool
 from worker.processes import ProcessRegistry
@@ -183,6 +176,9 @@ def create_app(settings: Settings, *, registry: ProcessRegistry | None = None) -
     # Around it all: /metrics and each request's latency, then the request's ID (logs).
     metrics = install_metrics(app) if settings.metrics else None
     app.add_middleware(RequestId)
+    # Pages first: a page route matches only a request that asks for HTML, any other
+    # passes on to the JSON route of the same path (the /ogc router does the same).
+    app.include_router(v1_pages.router)
     app.include_router(execution_router(registry))
     app.include_router(processes.router)
     app.include_router(jobs.router)
@@ -195,22 +191,22 @@ def create_app(settings: Settings, *, registry: ProcessRegistry | None = None) -
     )
     app.include_router(job_events.router)
     app.include_router(methods.router)
-    app.include_router(page_actions.router)
+    app.include_router(actions.router)
     app.include_router(login.router)
     app.mount(STATIC_PREFIX, StaticFiles(directory=STATIC_DIR), name="pages-static")
 
-    @app.get("/problems/{slug}", tags=["meta"], summary="What a problem type means")
-    def problem_type(slug: str) -> JSONResponse:
+    @app.get(
+        "/problems/{slug}",
+        tags=["meta"],
+        summary="What a problem type means",
+        response_model=ProblemTypeDocument,
+    )
+    def problem_type(slug: str) -> ProblemTypeDocument | JSONResponse:
         if slug not in PROBLEM_TYPES:
             return problem_response("not-found", detail=f"No problem type {slug!r}.")
         status, title, description = PROBLEM_TYPES[slug]
-        return JSONResponse(
-            {
-                "type": f"/problems/{slug}",
-                "title": title,
-                "status": status,
-                "description": description,
-            }
+        return ProblemTypeDocument(
+            type=f"/problems/{slug}", title=title, status=status, description=description
         )
 
     return app

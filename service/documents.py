@@ -6,10 +6,36 @@ from collections.abc import Mapping
 from datetime import datetime
 from typing import Any
 
-from worker.contract import JobRecord, JobStatus
+from pydantic import BaseModel
+
+from service.schemas import (
+    ArtifactLink,
+    Chunks,
+    JobError,
+    JobResult,
+    Link,
+    ResultsDocument,
+    StatusDocument,
+)
+from worker.contract import ArtifactInfo, JobRecord, JobStatus
 from worker.store.base import StoredArtifact
 
-__all__ = ["artifact_headers", "job_href", "results_document", "status_document"]
+__all__ = [
+    "artifact_headers",
+    "artifact_link",
+    "as_json",
+    "job_href",
+    "results_document",
+    "status_document",
+]
+
+JSON = "application/json"
+
+
+def as_json(document: BaseModel) -> dict[str, Any]:
+    """A document as the API sends it (the members it set, by their JSON names): what
+    a page shows of it."""
+    return document.model_dump(mode="json", by_alias=True, exclude_unset=True)
 
 
 def _iso(value: datetime | None) -> str | None:
@@ -20,85 +46,75 @@ def job_href(job_id: str) -> str:
     return f"/v1/jobs/{job_id}"
 
 
-def status_document(job: JobRecord, *, worker: bool = True, owner: bool = False) -> dict[str, Any]:
+def status_document(job: JobRecord, *, worker: bool = True, owner: bool = False) -> StatusDocument:
     """``GET /v1/jobs/{jobID}``: where the job is, with links; ``worker_id`` when
     ``worker`` (admins only, with API keys), the job's ``owner`` when ``owner``."""
     links = [
-        {
-            "href": job_href(job.job_id),
-            "rel": "self",
-            "type": "application/json",
-            "title": "this status document",
-        },
-        {
-            "href": f"/v1/processes/{job.process_id}",
-            "rel": "process",
-            "type": "application/json",
-            "title": "the process description",
-        },
-    ]
+        Link(href=job_href(job.job_id), rel="self", type=JSON, title="this status document"),
+        Link(href=f"/v1/processes/{job.process_id}", rel="process", type=JSON,
+             title="the process description"),
+    ]  # fmt: skip
     if job.status is JobStatus.SUCCESSFUL:
-        links.append(
-            {
-                "href": f"{job_href(job.job_id)}/results",
-                "rel": "results",
-                "type": "application/json",
-                "title": "the result document",
-            }
-        )
-    doc: dict[str, Any] = {
-        "jobID": job.job_id,
-        "processID": job.process_id,
-        "type": "process",
-        "status": job.status.value,
-        "progress": round(job.progress),
-        "message": job.message,
-        "created": _iso(job.created),
-        "started": _iso(job.started),
-        "finished": _iso(job.finished),
-        "updated": _iso(job.updated),
-        "attempts": job.attempts,
-        "max_attempts": job.max_attempts,
-        "time_limit_s": job.time_limit_s,
-        "expires": _iso(job.expires),
-    }
+        links.append(Link(href=f"{job_href(job.job_id)}/results", rel="results", type=JSON,
+                          title="the result document"))  # fmt: skip
+    optional: dict[str, Any] = {}
     if worker:
-        doc["worker_id"] = job.worker_id
+        optional["worker_id"] = job.worker_id
     if owner:
-        doc["owner"] = job.owner
-    doc["links"] = links
+        optional["owner"] = job.owner
     if job.status is JobStatus.FAILED and job.error is not None:
-        doc["error"] = {k: job.error[k] for k in ("type", "title", "detail") if k in job.error}
+        optional["error"] = JobError.model_validate(
+            {k: job.error[k] for k in ("type", "title", "detail") if k in job.error}
+        )
     if job.parent_id is not None:
-        doc["parentID"] = job.parent_id
+        optional["parentID"] = job.parent_id
     if job.children_total is not None:
-        doc["chunks"] = {"total": job.children_total, "ended": job.children_done,
-                         "failed": job.children_failed}  # fmt: skip
-    return doc
+        optional["chunks"] = Chunks(total=job.children_total, ended=job.children_done,
+                                    failed=job.children_failed)  # fmt: skip
+    return StatusDocument(
+        jobID=job.job_id,
+        processID=job.process_id,
+        type="process",
+        status=job.status.value,
+        progress=round(job.progress),
+        message=job.message,
+        created=_iso(job.created),
+        started=_iso(job.started),
+        finished=_iso(job.finished),
+        updated=_iso(job.updated),
+        attempts=job.attempts,
+        max_attempts=job.max_attempts,
+        time_limit_s=job.time_limit_s,
+        expires=_iso(job.expires),
+        links=links,
+        **optional,
+    )
 
 
-def results_document(job: JobRecord, result: Mapping[str, Any]) -> dict[str, Any]:
+def artifact_link(base: str, artifact: ArtifactInfo) -> ArtifactLink:
+    """An artifact of the job at ``base``: what it is and where to download it."""
+    return ArtifactLink(
+        name=artifact.name,
+        media_type=artifact.media_type,
+        title=artifact.title,
+        size=artifact.size,
+        href=f"{base}/results/{artifact.name}",
+    )
+
+
+def results_document(job: JobRecord, result: Mapping[str, Any]) -> ResultsDocument:
     """``GET /v1/jobs/{jobID}/results``: the result and every artifact's link."""
     base = job_href(job.job_id)
-    return {
-        "jobID": job.job_id,
-        "processID": job.process_id,
-        "result": dict(result),
-        "artifacts": [
-            {
-                "name": a.name,
-                "media_type": a.media_type,
-                "title": a.title,
-                "size": a.size,
-                "href": f"{base}/results/{a.name}",
-            }
-            for a in job.artifacts
+    return ResultsDocument(
+        jobID=job.job_id,
+        processID=job.process_id,
+        result=JobResult.model_validate(dict(result)),
+        artifacts=[artifact_link(base, a) for a in job.artifacts],
+        links=[
+            Link(href=f"{base}/results", rel="self", type=JSON),
+            Link(href=base, rel="up", type=JSON, title="the job's status"),
         ],
-        "links": [
-            {"href": f"{base}/results", "rel": "self", "type": "application/json"},
-            {"href": base, "rel": "up", "type": "application/json", "title": "the job's status"},
-        ],
-    }
+    )
 
 
 #: Media types a browser must not render in place (data files download).

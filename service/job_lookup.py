@@ -1,4 +1,5 @@
-"""Finding a job for a request, and saying why when there is none.
+"""Finding a job for a request, and saying why when there is none; the page of jobs a
+``/v1/jobs`` request lists.
 
 A job the caller may not see, or that never existed, is ``404 no-such-job``; one that
 expired (its retention ended, :mod:`worker.store.retention`) is ``410 job-expired``
@@ -8,11 +9,13 @@ threadpool (a sync route, or ``run_in_threadpool``).
 
 from __future__ import annotations
 
+from service.auth.identity import Identity
+from service.parameters import JobListQuery
 from worker.contract import JobRecord
 from worker.errors import DexlabError, JobExpired, NoSuchJob
-from worker.store.base import JobStore
+from worker.store.base import JobFilter, JobPage, JobStore
 
-__all__ = ["find_job", "missing_job"]
+__all__ = ["find_job", "list_jobs", "missing_job"]
 
 
 def missing_job(store: JobStore, job_id: str, owner: str | None) -> DexlabError:
@@ -33,3 +36,14 @@ def find_job(store: JobStore, job_id: str, owner: str | None) -> JobRecord:
     if job is None:
         raise missing_job(store, job_id, owner)
     return job
+
+
+def list_jobs(store: JobStore, identity: Identity, query: JobListQuery) -> JobPage:
+    """The page of jobs ``query`` selects among those ``identity`` may see (an admin:
+    ``owner``'s, when it names one)."""
+    scope = identity.owner_filter(query.owner)
+    where = None if query.parent is None else JobFilter(parent_id=query.parent)
+    return store.list_jobs(
+        limit=query.limit, cursor=query.cursor, status=query.status,
+        process_id=query.process_id, owner=scope, where=where,
+    )  # fmt: skip

@@ -1,7 +1,8 @@
 """A truthful OpenAPI document: every status a route can answer, with its schema.
 
-FastAPI documents a route's success response and, for routes with parameters, a 422
-in its own validation-error shape.  dexlab answers every error as an RFC 9457 problem
+FastAPI documents a route's success response (its ``response_model``: the documents'
+schemas come from the routes themselves) and, for routes with parameters, a 422 in its
+own validation-error shape.  dexlab answers every error as an RFC 9457 problem
 document, so this rewrites the generated document once (cached) after FastAPI builds
 it: each operation lists the problem statuses it can give (:data:`ROUTE_PROBLEMS` for
 the routes whose behaviour is known exactly; a conservative default for any other),
@@ -24,7 +25,7 @@ from service.ogc.schemas import OGC_ROUTE_PROBLEMS, document_process_ids
 from service.ogc.vocabulary import is_ogc_path
 from service.openapi_streams import artifact_responses, event_stream_response
 from service.problems import PROBLEM_TYPES
-from service.schemas import RETENTION, ROUTE_DOCUMENTS, document_schemas
+from service.schemas import RETENTION, stream_document_schemas
 from worker.processes import ProcessRegistry
 
 __all__ = ["PROBLEM_SCHEMA", "install_openapi"]
@@ -205,11 +206,6 @@ def _process_bodies(
     return statuses
 
 
-def _json_response(responses: dict[str, Any], status: str, ref: dict[str, Any]) -> None:
-    entry = responses.setdefault(status, {"description": "OK"})
-    entry["content"] = {"application/json": {"schema": ref}}
-
-
 def _page_alternatives(document: dict[str, Any]) -> None:
     """Pages beside JSON: a GET route with the ``f`` parameter answers 200 with a page
     too, and any GET's problem is a page for a client that asks for HTML."""
@@ -247,8 +243,7 @@ def _rewrite(
     document.setdefault("components", {})["securitySchemes"] = SECURITY_SCHEMES
     schemas = document.setdefault("components", {}).setdefault("schemas", {})
     schemas["ProblemDocument"] = PROBLEM_SCHEMA
-    refs, components = document_schemas()
-    schemas.update(components)
+    schemas.update(stream_document_schemas())
     schemas.pop("HTTPValidationError", None)
     schemas.pop("ValidationError", None)
     for path, item in document.get("paths", {}).items():
@@ -265,17 +260,6 @@ def _rewrite(
                 operation["security"] = [{"apiKey": []}, {}]
             for status in (*statuses, 500):
                 responses[str(status)] = _problem_response(status, path)
-            if method == "post" and path.endswith("/execution") and path.startswith("/v1/"):
-                responses["200"] = {
-                    "description": "The result document: the job finished within the "
-                    "`Prefer: wait=N` the request asked for (`Preference-Applied`).",
-                }
-                _json_response(responses, "200", refs["ResultsDocument"])
-                _json_response(responses, "201", refs["StatusDocument"])
-            document_route = ROUTE_DOCUMENTS.get((method, path))
-            if document_route is not None:
-                success, model = document_route
-                _json_response(responses, success, refs[model.__name__])
             if (method, path) == ("get", "/v1/jobs/{job_id}/results/{name}"):
                 artifact_responses(responses)
             if (method, path) == ("get", "/v1/jobs/{job_id}/events"):

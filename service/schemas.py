@@ -1,10 +1,12 @@
-"""The shapes of the JSON documents the API answers, for the OpenAPI document.
+"""The JSON documents of ``/v1``: one pydantic model each, the one source of truth.
 
-The handlers build these documents as plain dicts (:mod:`service.documents`); these
-models describe them so that ``/openapi.json`` tells a client what it will get, and
-schemathesis checks every answer against them.  They are descriptions, not
-serializers: a field added to a document must be added here (the API tests fail
-otherwise).
+The handlers build these models (:mod:`service.documents`, :mod:`service.routes`) and
+return them; each route declares its model as ``response_model``, so FastAPI both
+publishes it in ``/openapi.json`` and serializes the answer with it (schemathesis checks
+every answer against the published schema).  The routes serialize with
+``response_model_exclude_unset``: an optional member a document leaves out (a
+``worker_id`` a caller may not see, a job's ``error`` before it failed) is absent, not
+``null``; a member set to ``None`` is ``null``.
 """
 
 from __future__ import annotations
@@ -15,11 +17,26 @@ from pydantic import BaseModel, ConfigDict, Field
 from pydantic.json_schema import models_json_schema
 
 __all__ = [
-    "DOCUMENT_SCHEMAS",
     "RETENTION",
-    "ROUTE_DOCUMENTS",
+    "STREAM_DOCUMENTS",
+    "ArtifactLink",
+    "Chunks",
+    "JobError",
+    "JobList",
+    "JobResult",
+    "Landing",
+    "Link",
+    "Liveness",
+    "LocalPool",
+    "ProblemTypeDocument",
+    "ProcessDescription",
+    "ProcessList",
+    "ProcessSummary",
     "ProgressEvent",
-    "document_schemas",
+    "Readiness",
+    "ResultsDocument",
+    "StatusDocument",
+    "stream_document_schemas",
 ]
 
 #: The execute body's ``retention_s`` (a number, never a string or a boolean).
@@ -75,6 +92,11 @@ class StatusDocument(_Document):
     attempts: int
     max_attempts: int
     time_limit_s: float
+    expires: str | None = Field(
+        None,
+        description="When the finished job and its results are deleted (then 410 "
+        "job-expired, later 404); null while it is unfinished.",
+    )
     worker_id: str | None = Field(
         None,
         description="The worker process running or last running the job (host:pid); "
@@ -84,11 +106,6 @@ class StatusDocument(_Document):
         None,
         description="The API key that created the job ('' = anonymous); with API keys, "
         "shown to admin keys only.",
-    )
-    expires: str | None = Field(
-        None,
-        description="When the finished job and its results are deleted (then 410 "
-        "job-expired, later 404); null while it is unfinished.",
     )
     links: list[Link]
     error: JobError | None = None
@@ -221,35 +238,50 @@ class Landing(_Document):
     links: list[Link]
 
 
-DOCUMENT_SCHEMAS: tuple[type[BaseModel], ...] = (
-    StatusDocument,
-    JobList,
-    ResultsDocument,
-    ProcessList,
-    ProcessDescription,
-    Landing,
-    ProgressEvent,
-)
+class Liveness(_Document):
+    """``GET /health/live``: the process answers."""
 
-#: The 200 (or 201) document of each route: (method, path) -> (status, model).
-ROUTE_DOCUMENTS: dict[tuple[str, str], tuple[str, type[BaseModel]]] = {
-    ("get", "/"): ("200", Landing),
-    ("get", "/v1"): ("200", Landing),
-    ("get", "/v1/processes"): ("200", ProcessList),
-    ("get", "/v1/processes/{process_id}"): ("200", ProcessDescription),
-    ("post", "/v1/processes/{process_id}/execution"): ("201", StatusDocument),
-    ("get", "/v1/jobs"): ("200", JobList),
-    ("get", "/v1/jobs/{job_id}"): ("200", StatusDocument),
-    ("delete", "/v1/jobs/{job_id}"): ("200", StatusDocument),
-    ("get", "/v1/jobs/{job_id}/results"): ("200", ResultsDocument),
-}
+    status: Literal["live"]
 
 
-def document_schemas() -> tuple[dict[str, dict[str, Any]], dict[str, Any]]:
-    """``(refs by model name, component schemas)`` of the documents."""
-    refs, top = models_json_schema(
-        [(m, "serialization") for m in DOCUMENT_SCHEMAS],
+class LocalPool(_Document):
+    """This process's worker pool: its size and how many of its workers are alive."""
+
+    size: int
+    alive: int
+
+
+class Readiness(_Document):
+    """``GET /health/ready`` (200): the store takes a write and a worker is up."""
+
+    status: Literal["ready"]
+    store: Literal["ok"]
+    live_workers: int
+    local_pool: LocalPool | None = Field(
+        description="This process's worker pool; null where no pool runs here (a broker's "
+        "workers, or DEXLAB_WORKERS=0)."
+    )
+
+
+class ProblemTypeDocument(_Document):
+    """``GET /problems/{slug}``: what a problem type means."""
+
+    type: str
+    title: str
+    status: int
+    description: str
+
+
+#: The documents no route returns as its response model (the progress stream's events):
+#: added to the OpenAPI document's components by :mod:`service.openapi`.
+STREAM_DOCUMENTS: tuple[type[BaseModel], ...] = (ProgressEvent,)
+
+
+def stream_document_schemas() -> dict[str, Any]:
+    """The component schemas of :data:`STREAM_DOCUMENTS` (and the models they use)."""
+    _, top = models_json_schema(
+        [(m, "serialization") for m in STREAM_DOCUMENTS],
         ref_template="#/components/schemas/{model}",
     )
-    by_name = {model.__name__: ref for (model, _), ref in refs.items()}
-    return by_name, top.get("$defs", {})
+    schemas: dict[str, Any] = top.get("$defs", {})
+    return schemas

@@ -29,6 +29,7 @@ from typing import Any
 import httpx
 from starlette.concurrency import run_in_threadpool
 
+from service.documents import as_json
 from service.ogc.execute_request import Presentation
 from service.ogc.jobs.documents import status_info
 from service.ogc.outbound import OutboundPolicy
@@ -117,7 +118,7 @@ class CallbackSender:
             return None
         urls = PublicUrls(str(stored.get("base", "")))
         if claim.event == "in-progress":
-            return _json(status_info(job, urls)), JSON
+            return _json(as_json(status_info(job, urls))), JSON
         if claim.event == "failed":
             return _json(_failure(job.error or {}, urls, job.job_id)), "application/problem+json"
         result = self._store.get_result(job.job_id)

@@ -20,19 +20,22 @@ from service.ogc.execute_request import (
     subscriber_of,
 )
 from service.ogc.outbound import OutboundPolicy
-from service.ogc.outputs import process_outputs
+from service.ogc.outputs import OutputSpec, process_outputs
 from service.ogc.results import results_response, select_outputs
 from service.ogc.urls import PublicUrls
 from worker.contract import JobRecord, JobStatus
 from worker.dispatch import Dispatcher
-from worker.errors import JobFailed, NoSuchJob, ResultNotReady
+from worker.errors import JobFailed, NoSuchArtifact, NoSuchJob, ResultNotReady
 from worker.processes import ProcessDefinition, ProcessRegistry
-from worker.store.base import JobStore
+from worker.store.base import JobStore, StoredArtifact
 
 __all__ = [
+    "JobOutput",
     "Submitted",
     "definition_of",
     "finished_job",
+    "headers_only",
+    "job_output",
     "job_results",
     "outbound_policy",
     "submit_execute",
@@ -133,3 +136,34 @@ def job_results(
     outputs = process_outputs(definition) if definition is not None else {}
     selected = select_outputs(job, result, outputs, presentation, store)
     return results_response(job, selected, presentation, urls, store, headers)
+
+
+@dataclass(frozen=True)
+class JobOutput:
+    """One output of a finished job: a result member (``value``) or a file (``stored``)."""
+
+    job: JobRecord
+    spec: OutputSpec
+    value: Any = None
+    stored: StoredArtifact | None = None
+
+
+def job_output(
+    store: JobStore, registry: ProcessRegistry, job_id: str, output_id: str, owner: str | None
+) -> JobOutput:
+    """The output ``output_id`` of ``owner``'s finished job (None: anyone's); otherwise
+    the exception that says why there is none."""
+    job, result = finished_job(store, job_id, owner)
+    definition = registry.get(job.process_id)
+    spec = process_outputs(definition).get(output_id) if definition is not None else None
+    if spec is not None and not spec.artifact and output_id in result:
+        return JobOutput(job, spec, value=result[output_id])
+    stored = store.artifact(job_id, output_id) if spec is not None and spec.artifact else None
+    if spec is None or stored is None:
+        raise NoSuchArtifact(f"Job {job_id} has no output {output_id!r}.")
+    return JobOutput(job, spec, stored=stored)
+
+
+def headers_only(response: Response) -> Response:
+    """``response``'s status and headers (its ``Content-Length`` too), without a body."""
+    return Response(status_code=response.status_code, headers=dict(response.headers))

@@ -13,14 +13,16 @@ from __future__ import annotations
 
 import copy
 import json
+from collections.abc import Sequence
 from typing import Any
 
 from service.ogc.outputs import process_outputs
+from service.ogc.schemas import OgcLink, OgcProcess, OgcProcessList, OgcProcessSummary
 from service.ogc.urls import PublicUrls, self_and_alternate
 from service.ogc.vocabulary import JSON, REL_EXECUTE, REL_PROCESSES
 from worker.processes import ProcessDefinition
 
-__all__ = ["inline_refs", "process_description", "process_summary"]
+__all__ = ["inline_refs", "process_description", "process_list", "process_summary"]
 
 #: Most worked-example values quoted per input.
 _EXAMPLES_PER_INPUT = 3
@@ -58,9 +60,13 @@ def _job_control(definition: ProcessDefinition) -> list[str]:
     return [*modes, "dismiss"]
 
 
-def process_summary(definition: ProcessDefinition, urls: PublicUrls) -> dict[str, Any]:
+def process_summary(definition: ProcessDefinition, urls: PublicUrls) -> OgcProcessSummary:
     """processSummary.yaml: what the process is and how it can be run; links to its
     description, as JSON and as a page."""
+    return OgcProcessSummary.model_validate(_summary(definition, urls))
+
+
+def _summary(definition: ProcessDefinition, urls: PublicUrls) -> dict[str, Any]:
     href = urls.process(definition.id)
     return {
         "id": definition.id,
@@ -106,10 +112,10 @@ def _inputs(definition: ProcessDefinition) -> dict[str, Any]:
     return inputs
 
 
-def process_description(definition: ProcessDefinition, urls: PublicUrls) -> dict[str, Any]:
+def process_description(definition: ProcessDefinition, urls: PublicUrls) -> OgcProcess:
     """process.yaml: the summary, the ``inputs`` and ``outputs`` maps, and links to
     running it, to the method it follows and to the process list."""
-    document = process_summary(definition, urls)
+    document = _summary(definition, urls)
     document["inputs"] = _inputs(definition)
     document["outputs"] = {
         output_id: spec.describe() for output_id, spec in process_outputs(definition).items()
@@ -141,4 +147,28 @@ def process_description(definition: ProcessDefinition, urls: PublicUrls) -> dict
             "title": "all processes",
         }
     )
-    return document
+    return OgcProcess.model_validate(document)
+
+
+def process_list(
+    definitions: Sequence[ProcessDefinition], urls: PublicUrls, limit: int, offset: int
+) -> tuple[list[ProcessDefinition], OgcProcessList]:
+    """processList.yaml: the page of ``limit`` summaries from ``offset`` (and the
+    definitions on it), with a ``next`` link while more follow."""
+    page = list(definitions[offset : offset + limit])
+    links = self_and_alternate(
+        f"{urls.ogc}/processes?limit={limit}&offset={offset}", "this page of processes"
+    )
+    if offset + limit < len(definitions):
+        links.append(
+            {
+                "href": f"{urls.ogc}/processes?limit={limit}&offset={offset + limit}",
+                "rel": "next",
+                "type": JSON,
+                "title": "the next page",
+            }
+        )
+    return page, OgcProcessList(
+        processes=[process_summary(d, urls) for d in page],
+        links=[OgcLink.model_validate(link) for link in links],
+    )

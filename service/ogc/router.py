@@ -10,6 +10,7 @@ from fastapi import APIRouter, FastAPI
 from service.ogc.callbacks import CallbackSender
 from service.ogc.execution import outbound_policy
 from service.ogc.jobs.routes import router as job_router
+from service.ogc.page_routes import router as page_router
 from service.ogc.routes import router as process_router
 
 __all__ = ["ogc_router"]
@@ -35,8 +36,10 @@ async def _callbacks(app: FastAPI) -> AsyncIterator[None]:
 
 
 def ogc_router() -> APIRouter:
-    """Every ``/ogc`` route, and the callback sender's lifespan."""
+    """Every ``/ogc`` route, and the callback sender's lifespan.  The pages come first:
+    each matches only a request that asks for HTML (:mod:`service.pages.html_route`)."""
     router = APIRouter(lifespan=_callbacks)
+    router.include_router(page_router)
     router.include_router(process_router)
     router.include_router(job_router)
     return router

@@ -4,13 +4,11 @@ from __future__ import annotations
 
 from typing import Annotated, Any
 
-from fastapi import APIRouter, Header, Query, Request
-from fastapi.responses import JSONResponse
+from fastapi import APIRouter, Query, Request
 from starlette.concurrency import run_in_threadpool
 from starlette.responses import Response
 
-from service.auth import IdentityDep
-from service.deps import DispatcherDep, RegistryDep, SettingsDep, StoreDep
+from service.deps import ApiDep, RegistryDep, SettingsDep
 from service.execution import wait_while_connected
 from service.job_watcher import JobWatcher
 from service.ogc import pages as ogc_pages
@@ -18,12 +16,12 @@ from service.ogc.execute_request import OgcExecuteRequest
 from service.ogc.execution import (
     definition_of,
     job_results,
-    outbound_policy,
     submit_execute,
 )
 from service.ogc.execution_mode import execution_mode, parse_prefer
 from service.ogc.jobs.documents import status_info
-from service.ogc.process_documents import process_description, process_summary
+from service.ogc.landing import conformance_document, landing_document
+from service.ogc.process_documents import process_description, process_list
 from service.ogc.schemas import (
     ARTIFACT_CONTENT,
     RESULTS_SCHEMA,
@@ -33,158 +31,101 @@ from service.ogc.schemas import (
     OgcProcessList,
     OgcStatusInfo,
 )
-from service.ogc.urls import public_urls, self_and_alternate
-from service.ogc.vocabulary import (
-    JSON,
-    OGC_PREFIX,
-    REL_CONFORMANCE,
-    REL_JOB_LIST,
-    REL_PROCESSES,
-    TAG,
-    conformance_classes,
-    openapi_media_type,
-)
-from service.pages import FormatQuery, PagesDep, wants_html
+from service.ogc.urls import public_urls
+from service.ogc.vocabulary import JSON, OGC_PREFIX, TAG
+from service.pages import FormatQuery
+from service.parameters import IdempotencyKey, PreferHeader
 from worker.contract import JobRecord
 from worker.store.base import JobStore
 
-__all__ = ["router"]
+__all__ = ["ProcessListLimit", "ProcessListOffset", "router"]
 
 router = APIRouter(prefix=OGC_PREFIX, tags=[TAG])
 
-
-def _landing(request: Request) -> dict[str, Any]:
-    urls = public_urls(request)
-    version = request.app.openapi_version
-    return {
-        "title": "dexlab: OGC API - Processes",
-        "description": "Manipulator kinematic-design processes (dexterity maps, "
-        "conditioning maps, optimum designs) as OGC API - Processes - Part 1: Core.",
-        "links": [
-            *self_and_alternate(f"{urls.ogc}/", "this document"),
-            {
-                "href": f"{urls.root}/openapi.json",
-                "rel": "service-desc",
-                "type": openapi_media_type(version),
-                "title": f"the API definition (OpenAPI {version})",
-            },
-            {
-                "href": f"{urls.root}/docs",
-                "rel": "service-doc",
-                "type": "text/html",
-                "title": "the API documentation",
-            },
-            {
-                "href": f"{urls.ogc}/conformance",
-                "rel": REL_CONFORMANCE,
-                "type": JSON,
-                "title": "the conformance classes this server meets",
-            },
-            {
-                "href": f"{urls.ogc}/processes",
-                "rel": REL_PROCESSES,
-                "type": JSON,
-                "title": "the processes",
-            },
-            {"href": f"{urls.ogc}/jobs", "rel": REL_JOB_LIST, "type": JSON, "title": "the jobs"},
-        ],
-    }
+# The pages at these URLs (?f=html, Accept: text/html): service.ogc.page_routes.
 
 
-_LANDING: dict[int | str, dict[str, Any]] = {
-    200: {"model": OgcLandingPage, "description": "The landing page."}
-}
+@router.get(
+    "/",
+    summary="Landing page",
+    response_model=OgcLandingPage,
+    response_description="The landing page.",
+    response_model_exclude_unset=True,
+)
+def landing(request: Request, response: Response, f: FormatQuery = None) -> OgcLandingPage:
+    response.headers.update(ogc_pages.NEGOTIATED)
+    return landing_document(public_urls(request), request.app.openapi_version)
 
 
-def _answer_landing(request: Request, pages: PagesDep) -> Response:
-    document = _landing(request)
-    if wants_html(request):
-        return ogc_pages.landing_page(request, pages, public_urls(request), document)
-    return JSONResponse(document, headers=ogc_pages.NEGOTIATED)
-
-
-@router.get("/", summary="Landing page", responses=_LANDING, response_model=None)
-def landing(request: Request, pages: PagesDep, f: FormatQuery = None) -> Response:
-    return _answer_landing(request, pages)
-
-
-@router.get("", include_in_schema=False, response_model=None)
-def landing_without_slash(request: Request, pages: PagesDep, f: FormatQuery = None) -> Response:
-    return _answer_landing(request, pages)
+@router.get(
+    "",
+    include_in_schema=False,
+    response_model=OgcLandingPage,
+    response_model_exclude_unset=True,
+)
+def landing_without_slash(
+    request: Request, response: Response, f: FormatQuery = None
+) -> OgcLandingPage:
+    return landing(request, response)
 
 
 @router.get(
     "/conformance",
     summary="The conformance classes this server meets",
-    responses={200: {"model": OgcConfClasses, "description": "The conformance declaration."}},
-    response_model=None,
+    response_model=OgcConfClasses,
+    response_description="The conformance declaration.",
+    response_model_exclude_unset=True,
 )
 def conformance(
-    request: Request, settings: SettingsDep, pages: PagesDep, f: FormatQuery = None
-) -> Response:
-    callbacks = outbound_policy(settings).enabled
-    document = {"conformsTo": conformance_classes(callbacks, request.app.openapi_version)}
-    if wants_html(request):
-        return ogc_pages.conformance_page(request, pages, public_urls(request), document)
-    return JSONResponse(document, headers=ogc_pages.NEGOTIATED)
+    request: Request, response: Response, settings: SettingsDep, f: FormatQuery = None
+) -> OgcConfClasses:
+    response.headers.update(ogc_pages.NEGOTIATED)
+    return conformance_document(settings, request.app.openapi_version)
+
+
+ProcessListLimit = Annotated[int, Query(ge=1, le=10000, description="Most summaries per page.")]
+ProcessListOffset = Annotated[
+    int, Query(ge=0, le=1_000_000, description="Summaries to skip (next links).")
+]
 
 
 @router.get(
     "/processes",
     summary="The processes",
-    responses={200: {"model": OgcProcessList, "description": "Process summaries."}},
-    response_model=None,
+    response_model=OgcProcessList,
+    response_description="Process summaries.",
+    response_model_exclude_unset=True,
 )
 def list_processes(
     request: Request,
+    response: Response,
     registry: RegistryDep,
-    pages: PagesDep,
-    limit: Annotated[int, Query(ge=1, le=10000, description="Most summaries per page.")] = 10,
-    offset: Annotated[
-        int, Query(ge=0, le=1_000_000, description="Summaries to skip (next links).")
-    ] = 0,
+    limit: ProcessListLimit = 10,
+    offset: ProcessListOffset = 0,
     f: FormatQuery = None,
-) -> Response:
-    urls = public_urls(request)
-    definitions = list(registry)
-    page = definitions[offset : offset + limit]
-    links = self_and_alternate(
-        f"{urls.ogc}/processes?limit={limit}&offset={offset}", "this page of processes"
-    )
-    if offset + limit < len(definitions):
-        links.append(
-            {
-                "href": f"{urls.ogc}/processes?limit={limit}&offset={offset + limit}",
-                "rel": "next",
-                "type": JSON,
-                "title": "the next page",
-            }
-        )
-    document = {"processes": [process_summary(d, urls) for d in page], "links": links}
-    if wants_html(request):
-        return ogc_pages.process_list_page(request, pages, urls, page, document)
-    return JSONResponse(document, headers=ogc_pages.NEGOTIATED)
+) -> OgcProcessList:
+    _, document = process_list(list(registry), public_urls(request), limit, offset)
+    response.headers.update(ogc_pages.NEGOTIATED)
+    return document
 
 
 @router.get(
     "/processes/{processID}",
     summary="A process: its inputs and outputs",
-    responses={200: {"model": OgcProcess, "description": "The OGC process description."}},
-    response_model=None,
+    response_model=OgcProcess,
+    response_description="The OGC process description.",
+    response_model_exclude_unset=True,
 )
 def describe_process(
     processID: str,
     request: Request,
+    response: Response,
     registry: RegistryDep,
-    pages: PagesDep,
     f: FormatQuery = None,
-) -> Response:
+) -> OgcProcess:
     definition = definition_of(registry, processID)
-    urls = public_urls(request)
-    document = process_description(definition, urls)
-    if wants_html(request):
-        return ogc_pages.process_page(request, pages, registry, urls, definition, document)
-    return JSONResponse(document, headers=ogc_pages.NEGOTIATED)
+    response.headers.update(ogc_pages.NEGOTIATED)
+    return process_description(definition, public_urls(request))
 
 
 _EXECUTE_RESPONSES: dict[int | str, dict[str, Any]] = {
@@ -194,10 +135,7 @@ _EXECUTE_RESPONSES: dict[int | str, dict[str, Any]] = {
         "`Link: <job>; rel=monitor` names the job.",
         "content": {JSON: {"schema": RESULTS_SCHEMA}, **ARTIFACT_CONTENT},
     },
-    201: {
-        "model": OgcStatusInfo,
-        "description": "Run asynchronously: the job's status; `Location` is the job.",
-    },
+    201: {"description": "Run asynchronously: the job's status; `Location` is the job."},
     204: {
         "description": "Run synchronously, `response=raw`, every output by reference: "
         "one `Link` header per output."
@@ -209,23 +147,19 @@ _EXECUTE_RESPONSES: dict[int | str, dict[str, Any]] = {
     "/processes/{processID}/execution",
     summary="Execute a process (synchronously or not, as the standard negotiates)",
     responses=_EXECUTE_RESPONSES,
-    response_model=None,
+    response_model=OgcStatusInfo,
+    response_model_exclude_unset=True,
     status_code=201,
 )
 async def execute(
     processID: str,
     body: OgcExecuteRequest,
     request: Request,
-    store: StoreDep,
-    registry: RegistryDep,
-    settings: SettingsDep,
-    dispatcher: DispatcherDep,
-    identity: IdentityDep,
-    idempotency_key: Annotated[
-        str | None, Header(alias="Idempotency-Key", min_length=1, max_length=255)
-    ] = None,
-    prefer: Annotated[str | None, Header(max_length=255)] = None,
-) -> Response:
+    response: Response,
+    api: ApiDep,
+    idempotency_key: IdempotencyKey = None,
+    prefer: PreferHeader = None,
+) -> OgcStatusInfo | Response:
     """Create a job.  With no `Prefer`, a process that can run synchronously (its
     `sync-execute`, within its `sync_cost_limit`) answers with the results (waiting at
     most 60 s); `Prefer: respond-async` answers 201 at once; `respond-sync` and
@@ -234,16 +168,16 @@ async def execute(
     urls = public_urls(request)
     submitted = await run_in_threadpool(
         submit_execute,
-        store,
-        registry,
-        settings,
-        dispatcher,
+        api.store,
+        api.registry,
+        api.settings,
+        api.dispatcher,
         processID,
         body,
         idempotency_key,
         not preferences.respond_async,
         urls.root,
-        identity.name,
+        api.identity.name,
     )
     mode = execution_mode(preferences, submitted.can_run_sync)
     job_id = submitted.job.job_id
@@ -256,14 +190,15 @@ async def execute(
         if mode.applied_if_sync:
             headers["Preference-Applied"] = mode.applied_if_sync
         return await run_in_threadpool(
-            job_results, store, registry, job_id, urls, submitted.presentation, headers
+            job_results, api.store, api.registry, job_id, urls, submitted.presentation, headers
         )
     if mode.applied_if_async:
         headers["Preference-Applied"] = mode.applied_if_async
     job = submitted.job
     if mode.synchronous:  # waited in vain: the status as it is now
-        job = await run_in_threadpool(_current, store, job)
-    return JSONResponse(status_info(job, urls), status_code=201, headers=headers)
+        job = await run_in_threadpool(_current, api.store, job)
+    response.headers.update(headers)
+    return status_info(job, urls)
 
 
 def _current(store: JobStore, job: JobRecord) -> JobRecord:

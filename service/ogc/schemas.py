@@ -1,10 +1,13 @@
-"""The shapes of the façade's documents, for the OpenAPI document (OGC 18-062r2's
-schemas, as dexlab fills them); and the problem statuses of each route.
+"""The façade's documents as pydantic models (OGC 18-062r2's schemas, as dexlab fills
+them); and the problem statuses of each route.
 
-These describe what the handlers build (:mod:`service.ogc.process_documents`,
-:mod:`service.ogc.jobs.documents`, :mod:`service.ogc.results`); schemathesis checks the
-answers against them.  Names carry an ``Ogc`` prefix: the native API has its own
-``Link``, ``JobList`` and so on.
+The builders (:mod:`service.ogc.landing`, :mod:`service.ogc.process_documents`,
+:mod:`service.ogc.jobs.documents`) return these models, and each JSON route declares
+its model as ``response_model``: FastAPI publishes it and serializes the answer with it
+(``response_model_exclude_unset``: a time not reached yet stays absent).  The results
+(:mod:`service.ogc.results`) take the form the execute request chose, so they are
+described by :data:`RESULTS_SCHEMA` and :data:`ARTIFACT_CONTENT` instead.  Names carry
+an ``Ogc`` prefix: the native API has its own ``Link``, ``JobList`` and so on.
 """
 
 from __future__ import annotations

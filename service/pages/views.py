@@ -14,7 +14,7 @@ from urllib.parse import urlencode
 from fastapi import Request
 from fastapi.responses import HTMLResponse
 
-from service.documents import results_document, status_document
+from service.documents import artifact_link, as_json, job_href, status_document
 from service.pages.input_table import input_rows
 from service.pages.quantities import job_quantities
 from service.pages.renderer import Pages
@@ -157,7 +157,7 @@ def job_list_page(
     query = dict(request.query_params)
     query["f"] = "json"
     context = {
-        "jobs": [status_document(j) for j in page.jobs],
+        "jobs": [as_json(status_document(j)) for j in page.jobs],
         "statuses": [s.value for s in JobStatus],
         "process_ids": registry.ids(),
         "status": status.value if status is not None else "",
@@ -236,7 +236,7 @@ def job_page(
     """A job's page: status (live while it runs), the failure, the plots, the notes,
     the result as tables, the downloads and the inputs; ``template`` (one extending
     job.html) draws it with ``extra`` added to its context."""
-    document = status_document(job)
+    document = as_json(status_document(job))
     definition = registry.get(job.process_id)
     finished = job.status in (JobStatus.SUCCESSFUL, JobStatus.FAILED)
     live = job.status in (JobStatus.ACCEPTED, JobStatus.RUNNING)
@@ -256,7 +256,6 @@ def job_page(
         "downloads": [],
     }
     if result is not None and job.status is JobStatus.SUCCESSFUL:
-        results = results_document(job, result)
         warnings = _warnings(result)
         notes = _notes(result, warnings)
         context.update(
@@ -270,7 +269,11 @@ def job_page(
                 quantities=job_quantities(definition, result, job.inputs),
             ),
             downloads=[
-                {**a, "download": a["media_type"] in _DOWNLOADS} for a in results["artifacts"]
+                {
+                    **as_json(artifact_link(job_href(job.job_id), a)),
+                    "download": a.media_type in _DOWNLOADS,
+                }
+                for a in job.artifacts
             ],
         )
     context.update(extra or {})

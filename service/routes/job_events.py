@@ -22,10 +22,8 @@ from fastapi import APIRouter
 from fastapi.responses import StreamingResponse
 from starlette.concurrency import run_in_threadpool
 
-from service.auth import IdentityDep
-from service.deps import StoreDep
+from service.deps import ApiDep
 from service.job_lookup import find_job
-from service.pages import PagesDep
 from service.schemas import ProgressEvent
 from worker.contract import TERMINAL_STATUSES, JobRecord
 from worker.errors import StoreUnavailable
@@ -101,15 +99,13 @@ async def _events(
         }
     },
 )
-async def job_events(
-    job_id: str, store: StoreDep, pages: PagesDep, identity: IdentityDep
-) -> StreamingResponse:
+async def job_events(job_id: str, api: ApiDep) -> StreamingResponse:
     """``progress`` events until the job ends (see the module docstring); a browser's
     EventSource sends its session cookie."""
-    job = await run_in_threadpool(find_job, store, job_id, identity.owner_scope)
-    settings = pages.settings
+    job = await run_in_threadpool(find_job, api.store, job_id, api.identity.owner_scope)
+    settings = api.pages.settings
     return StreamingResponse(
-        _events(store, job, settings.event_poll_seconds, settings.event_stream_seconds),
+        _events(api.store, job, settings.event_poll_seconds, settings.event_stream_seconds),
         media_type=EVENT_STREAM,
         headers={"Cache-Control": "no-cache", "X-Accel-Buffering": "no"},
     )

@@ -8,18 +8,19 @@ retention ended) is 410 ``job-expired`` for a while, then 404
 
 from __future__ import annotations
 
-from typing import Annotated, Any
-from urllib.parse import urlencode
+from typing import Annotated
 
-from fastapi import APIRouter, Header, Query, Request, Response
-from fastapi.responses import HTMLResponse, StreamingResponse
+from fastapi import APIRouter, Header, Response
+from fastapi.responses import StreamingResponse
 
-from service.auth import Identity, IdentityDep
-from service.deps import RegistryDep, StoreDep
+from service.auth import Identity
+from service.deps import ApiDep
 from service.documents import artifact_headers, results_document, status_document
 from service.job_lookup import find_job, missing_job
-from service.pages import FormatQuery, Pages, PagesDep, views, wants_html
-from service.parameters import CursorQuery
+from service.job_lookup import list_jobs as find_jobs
+from service.pages import FormatQuery
+from service.parameters import JobListQueryDep
+from service.schemas import JobList, Link, ResultsDocument, StatusDocument
 from worker.contract import JobRecord, JobStatus
 from worker.errors import (
     JobDismissed,
@@ -28,12 +29,13 @@ from worker.errors import (
     ResultNotReady,
     StorageError,
 )
-from worker.processes import ProcessRegistry
-from worker.store.base import JobFilter, JobStore, StoredArtifact
+from worker.store.base import JobStore, StoredArtifact
 
-__all__ = ["router"]
+__all__ = ["finished_document", "router"]
 
 router = APIRouter(prefix="/v1/jobs", tags=["jobs"])
+
+JSON = "application/json"
 
 
 def _job(store: JobStore, job_id: str, owner: str | None = None) -> JobRecord:
@@ -42,95 +44,58 @@ def _job(store: JobStore, job_id: str, owner: str | None = None) -> JobRecord:
     return find_job(store, job_id, owner)
 
 
-@router.get("", summary="List jobs, newest first", response_model=None)
+# The GET routes that have a page (?f=html, Accept: text/html): service.pages.routes.
+
+
+@router.get(
+    "",
+    summary="List jobs, newest first",
+    response_model=JobList,
+    response_model_exclude_unset=True,
+)
 def list_jobs(
-    request: Request,
-    response: Response,
-    store: StoreDep,
-    registry: RegistryDep,
-    pages: PagesDep,
-    identity: IdentityDep,
-    limit: Annotated[int, Query(ge=1, le=1000)] = 20,
-    cursor: CursorQuery = None,
-    status: Annotated[JobStatus | None, Query()] = None,
-    process_id: Annotated[str | None, Query(alias="processID", max_length=200)] = None,
-    owner: Annotated[
-        str | None,
-        Query(max_length=64, description="Admin keys only: this key's jobs ('' = anonymous)."),
-    ] = None,
-    parent: Annotated[
-        str | None,
-        Query(max_length=64, description="A design study's jobID: list its chunk jobs."),
-    ] = None,
-    f: FormatQuery = None,
-) -> dict[str, Any] | HTMLResponse:
-    scope = identity.owner_filter(owner)
-    where = None if parent is None else JobFilter(parent_id=parent)
-    page = store.list_jobs(
-        limit=limit, cursor=cursor, status=status, process_id=process_id, owner=scope,
-        where=where,
-    )  # fmt: skip
+    response: Response, api: ApiDep, query: JobListQueryDep, f: FormatQuery = None
+) -> JobList:
+    page = find_jobs(api.store, api.identity, query)
     response.headers["Vary"] = "Accept"
-    if wants_html(request):
-        return views.job_list_page(
-            request, pages, registry, page, limit=limit, status=status, process_id=process_id,
-            owner=owner,
-        )  # fmt: skip
-    links = [{"href": "/v1/jobs", "rel": "self", "type": "application/json"}]
+    links = [Link(href="/v1/jobs", rel="self", type=JSON)]
     if page.next_cursor:
-        query = f"limit={limit}&cursor={page.next_cursor}"
-        if status is not None:
-            query += f"&status={status.value}"
-        if process_id is not None:
-            query += f"&processID={process_id}"
-        if owner is not None:
-            query += f"&{urlencode({'owner': owner})}"
-        if parent is not None:
-            query += f"&{urlencode({'parent': parent})}"
-        links.append({"href": f"/v1/jobs?{query}", "rel": "next", "type": "application/json"})
-    return {
-        "jobs": [_status(j, identity) for j in page.jobs],
-        "next_cursor": page.next_cursor,
-        "links": links,
-    }
+        links.append(Link(href=query.next_href(page.next_cursor), rel="next", type=JSON))
+    return JobList(
+        jobs=[_status(j, api.identity) for j in page.jobs],
+        next_cursor=page.next_cursor,
+        links=links,
+    )
 
 
-@router.get("/{job_id}", summary="A job's status", response_model=None)
-def get_job(
-    job_id: str,
-    request: Request,
-    response: Response,
-    store: StoreDep,
-    registry: RegistryDep,
-    pages: PagesDep,
-    identity: IdentityDep,
-    f: FormatQuery = None,
-) -> dict[str, Any] | HTMLResponse:
-    job = _job(store, job_id, identity.owner_scope)
+@router.get(
+    "/{job_id}",
+    summary="A job's status",
+    response_model=StatusDocument,
+    response_model_exclude_unset=True,
+)
+def get_job(job_id: str, response: Response, api: ApiDep, f: FormatQuery = None) -> StatusDocument:
+    job = _job(api.store, job_id, api.identity.owner_scope)
     response.headers["Vary"] = "Accept"
-    if wants_html(request):
-        return _job_page(request, store, registry, pages, job)
-    return _status(job, identity)
+    return _status(job, api.identity)
 
 
-def _status(job: JobRecord, identity: Identity) -> dict[str, Any]:
+def _status(job: JobRecord, identity: Identity) -> StatusDocument:
     """The status document as this caller may see it (``worker_id``, ``owner``)."""
     return status_document(job, worker=identity.sees_workers, owner=identity.sees_owners)
 
 
-def _job_page(
-    request: Request, store: JobStore, registry: ProcessRegistry, pages: Pages, job: JobRecord
-) -> HTMLResponse:
-    result = store.get_result(job.job_id) if job.status is JobStatus.SUCCESSFUL else None
-    return views.job_page(request, pages, registry, job, result)
-
-
-@router.delete("/{job_id}", summary="Dismiss a job (stops a running attempt's process)")
-def dismiss_job(job_id: str, store: StoreDep, identity: IdentityDep) -> dict[str, Any]:
-    job = store.dismiss(job_id, owner=identity.owner_scope)
+@router.delete(
+    "/{job_id}",
+    summary="Dismiss a job (stops a running attempt's process)",
+    response_model=StatusDocument,
+    response_model_exclude_unset=True,
+)
+def dismiss_job(job_id: str, api: ApiDep) -> StatusDocument:
+    job = api.store.dismiss(job_id, owner=api.identity.owner_scope)
     if job is None:
-        raise missing_job(store, job_id, identity.owner_scope)
-    return _status(job, identity)
+        raise missing_job(api.store, job_id, api.identity.owner_scope)
+    return _status(job, api.identity)
 
 
 def _finished(store: JobStore, job_id: str, owner: str | None = None) -> JobRecord:
@@ -147,7 +112,7 @@ def _finished(store: JobStore, job_id: str, owner: str | None = None) -> JobReco
     return job
 
 
-def finished_document(store: JobStore, job: JobRecord) -> dict[str, Any]:
+def finished_document(store: JobStore, job: JobRecord) -> ResultsDocument:
     """The result document of a finished job, or the problem that says why there is none."""
     job = _finished(store, job.job_id)
     result = store.get_result(job.job_id)
@@ -159,23 +124,15 @@ def finished_document(store: JobStore, job: JobRecord) -> dict[str, Any]:
 @router.get(
     "/{job_id}/results",
     summary="The result document with links to every artifact",
-    response_model=None,
+    response_model=ResultsDocument,
+    response_model_exclude_unset=True,
 )
 def get_results(
-    job_id: str,
-    request: Request,
-    response: Response,
-    store: StoreDep,
-    registry: RegistryDep,
-    pages: PagesDep,
-    identity: IdentityDep,
-    f: FormatQuery = None,
-) -> dict[str, Any] | HTMLResponse:
-    job = _job(store, job_id, identity.owner_scope)
+    job_id: str, response: Response, api: ApiDep, f: FormatQuery = None
+) -> ResultsDocument:
+    job = _job(api.store, job_id, api.identity.owner_scope)
     response.headers["Vary"] = "Accept"
-    if wants_html(request):  # the job's page shows its results (or why there are none)
-        return _job_page(request, store, registry, pages, job)
-    return finished_document(store, job)
+    return finished_document(api.store, job)
 
 
 #: The artifact's validator; over-long values are 422 before anything is looked up.
@@ -203,11 +160,11 @@ def _artifact(
 def get_artifact(
     job_id: str,
     name: str,
-    store: StoreDep,
-    identity: IdentityDep,
+    api: ApiDep,
     if_none_match: IfNoneMatch = None,
 ) -> Response:
-    stored, headers = _artifact(store, job_id, name, identity.owner_scope)
+    store = api.store
+    stored, headers = _artifact(store, job_id, name, api.identity.owner_scope)
     if if_none_match is not None and _etag_matches(if_none_match, headers["ETag"]):
         return Response(status_code=304, headers=headers)
     try:
@@ -224,12 +181,11 @@ def get_artifact(
 def head_artifact(
     job_id: str,
     name: str,
-    store: StoreDep,
-    identity: IdentityDep,
+    api: ApiDep,
     if_none_match: IfNoneMatch = None,
 ) -> Response:
     """What GET answers, without the bytes (none is read)."""
-    stored, headers = _artifact(store, job_id, name, identity.owner_scope)
+    stored, headers = _artifact(api.store, job_id, name, api.identity.owner_scope)
     if if_none_match is not None and _etag_matches(if_none_match, headers["ETag"]):
         return Response(status_code=304, headers=headers)
     headers["Content-Length"] = str(stored.info.size)

@@ -10,12 +10,15 @@ examples.  Both routes run the same handler, so they answer identically.
 from __future__ import annotations
 
 from collections.abc import Awaitable, Callable
-from typing import Annotated, Any
+from typing import Any
 
-from fastapi import APIRouter, Header, Request, Response
+from fastapi import APIRouter, Request, Response
+from fastapi.responses import JSONResponse
 
-from service.deps import DispatcherDep, RegistryDep, SettingsDep, StoreDep
-from service.routes.processes import ExecuteRequest, execute
+from service.deps import ApiDep
+from service.parameters import IdempotencyKey, PreferHeader
+from service.routes.processes import EXECUTE_RESPONSES, ExecuteRequest, execute
+from service.schemas import StatusDocument
 from worker.processes import ProcessDefinition, ProcessRegistry
 
 __all__ = [
@@ -59,24 +62,16 @@ def operation_id(process_id: str) -> str:
     return "execute_" + process_id.replace("-", "_")
 
 
-def _bound(process_id: str) -> Callable[..., Awaitable[Any]]:
+def _bound(process_id: str) -> Callable[..., Awaitable[StatusDocument | JSONResponse]]:
     async def run_process(
         body: ExecuteRequest,
         request: Request,
         response: Response,
-        store: StoreDep,
-        registry: RegistryDep,
-        settings: SettingsDep,
-        dispatcher: DispatcherDep,
-        idempotency_key: Annotated[
-            str | None, Header(alias="Idempotency-Key", min_length=1, max_length=255)
-        ] = None,
-        prefer: Annotated[str | None, Header(max_length=255)] = None,
-    ) -> Any:
-        return await execute(
-            process_id, body, request, response, store, registry, settings, dispatcher,
-            idempotency_key, prefer,
-        )  # fmt: skip
+        api: ApiDep,
+        idempotency_key: IdempotencyKey = None,
+        prefer: PreferHeader = None,
+    ) -> StatusDocument | JSONResponse:
+        return await execute(process_id, body, request, response, api, idempotency_key, prefer)
 
     return run_process
 
@@ -90,6 +85,9 @@ def execution_router(registry: ProcessRegistry) -> APIRouter:
             _bound(definition.id),
             methods=["POST"],
             status_code=201,
+            response_model=StatusDocument,
+            response_model_exclude_unset=True,
+            responses=EXECUTE_RESPONSES,
             tags=[family_tag(registry, definition)],
             summary=f"Run {definition.id}: {definition.title}",
             description=(

@@ -2,29 +2,44 @@
 
 from __future__ import annotations
 
-from typing import Annotated, Any
+from typing import Any
 
-from fastapi import APIRouter, Header, Request, Response
-from fastapi.responses import HTMLResponse, JSONResponse
+from fastapi import APIRouter, Request, Response
+from fastapi.responses import JSONResponse
 from pydantic import BaseModel, ConfigDict, Field
 from starlette.concurrency import run_in_threadpool
 
-from service.auth import Identity, get_identity
-from service.deps import DispatcherDep, RegistryDep, SettingsDep, StoreDep
-from service.documents import job_href, status_document
+from service.deps import Api, ApiDep, RegistryDep
+from service.documents import as_json, job_href, status_document
 from service.execution import submit_job, wait_while_connected
 from service.job_watcher import JobWatcher
-from service.pages import FormatQuery, PagesDep, views, wants_html
+from service.pages import FormatQuery
+from service.parameters import IdempotencyKey, PreferHeader
 from service.preferences import requested_wait
 from service.routes.jobs import finished_document
-from service.schemas import RETENTION
+from service.schemas import (
+    RETENTION,
+    Link,
+    ProcessDescription,
+    ProcessList,
+    ProcessSummary,
+    ResultsDocument,
+    StatusDocument,
+)
 from worker.contract import JobRecord
 from worker.errors import NoSuchJob
 from worker.store.base import JobStore
 
-__all__ = ["router"]
+__all__ = [
+    "EXECUTE_RESPONSES",
+    "ExecuteRequest",
+    "execute",
+    "router",
+]
 
 router = APIRouter(prefix="/v1/processes", tags=["processes"])
+
+JSON = "application/json"
 
 
 class ExecuteRequest(BaseModel):
@@ -36,93 +51,84 @@ class ExecuteRequest(BaseModel):
     retention_s: float | None = RETENTION
 
 
-# The process list and descriptions need no store and take no threadpool thread for
-# JSON: they answer at once even while every thread waits on a store in trouble.
-# (A page reads templates and method files: it runs in the threadpool.)
+# The process list and descriptions need no store and take no threadpool thread: they
+# answer at once even while every thread waits on a store in trouble.  Their pages are
+# service.pages.routes.
 
 
-@router.get("", summary="List the processes", response_model=None)
+@router.get(
+    "",
+    summary="List the processes",
+    response_model=ProcessList,
+    response_model_exclude_unset=True,
+)
 async def list_processes(
-    request: Request,
-    response: Response,
-    registry: RegistryDep,
-    pages: PagesDep,
-    f: FormatQuery = None,
-) -> dict[str, Any] | HTMLResponse:
+    response: Response, registry: RegistryDep, f: FormatQuery = None
+) -> ProcessList:
     response.headers["Vary"] = "Accept"
-    if wants_html(request):
-        return await run_in_threadpool(views.process_list_page, request, pages, registry)
-    return {
-        "processes": [
-            {
-                **d.summary(),
-                "links": [
-                    {"href": f"/v1/processes/{d.id}", "rel": "self", "type": "application/json"}
-                ],
-            }
+    return ProcessList(
+        processes=[
+            ProcessSummary(
+                **d.summary(), links=[Link(href=f"/v1/processes/{d.id}", rel="self", type=JSON)]
+            )
             for d in registry
         ],
-        "links": [{"href": "/v1/processes", "rel": "self", "type": "application/json"}],
-    }
+        links=[Link(href="/v1/processes", rel="self", type=JSON)],
+    )
 
 
 @router.get(
     "/{process_id}",
     summary="Describe a process: inputs schema, examples, limits",
-    response_model=None,
+    response_model=ProcessDescription,
+    response_model_exclude_unset=True,
 )
 async def describe_process(
-    process_id: str,
-    request: Request,
-    response: Response,
-    registry: RegistryDep,
-    pages: PagesDep,
-    f: FormatQuery = None,
-) -> dict[str, Any] | HTMLResponse:
+    process_id: str, response: Response, registry: RegistryDep, f: FormatQuery = None
+) -> ProcessDescription:
     definition = registry.require(process_id)
     response.headers["Vary"] = "Accept"
-    if wants_html(request):
-        return await run_in_threadpool(views.process_page, request, pages, registry, definition)
-    doc = definition.describe()
-    doc["links"] = [
-        {
-            "href": f"/v1/processes/{process_id}/execution",
-            "rel": "http://www.opengis.net/def/rel/ogc/1.0/execute",
-            "type": "application/json",
-            "title": "POST to run it",
-        },
-    ]
+    links = [
+        Link(href=f"/v1/processes/{process_id}/execution",
+             rel="http://www.opengis.net/def/rel/ogc/1.0/execute", type=JSON,
+             title="POST to run it"),
+    ]  # fmt: skip
     if definition.method_doc:
-        doc["links"].append(
-            {
-                "href": f"/methods/{definition.method_doc}",
-                "rel": "describedby",
-                "type": "text/html",
-                "title": "The method, its equations and the paper's errata",
-            }
-        )
-    return doc
+        links.append(
+            Link(href=f"/methods/{definition.method_doc}", rel="describedby", type="text/html",
+                 title="The method, its equations and the paper's errata")
+        )  # fmt: skip
+    return ProcessDescription.model_validate({**definition.describe(), "links": links})
+
+
+#: The execute routes' other success: the result document of a job that finished
+#: within the ``Prefer: wait=N`` asked for (their 201 is the status document).
+EXECUTE_RESPONSES: dict[int | str, dict[str, Any]] = {
+    200: {
+        "model": ResultsDocument,
+        "description": "The result document: the job finished within the `Prefer: wait=N` "
+        "the request asked for (`Preference-Applied`).",
+    }
+}
 
 
 @router.post(
     "/{process_id}/execution",
     status_code=201,
     summary="Submit a job (committed before the response)",
+    response_model=StatusDocument,
+    response_model_exclude_unset=True,
+    responses=EXECUTE_RESPONSES,
 )
 async def execute(
     process_id: str,
     body: ExecuteRequest,
     request: Request,
     response: Response,
-    store: StoreDep,
-    registry: RegistryDep,
-    settings: SettingsDep,
-    dispatcher: DispatcherDep,
-    idempotency_key: Annotated[
-        str | None, Header(alias="Idempotency-Key", min_length=1, max_length=255)
-    ] = None,
-    prefer: Annotated[str | None, Header(max_length=255)] = None,
-) -> Any:
+    api: ApiDep,
+    idempotency_key: IdempotencyKey = None,
+    prefer: PreferHeader = None,
+) -> StatusDocument | JSONResponse:
     """Queue a job.  With ``Prefer: wait=N`` and a request within the process's
     ``sync_cost_limit``, answer ``200`` with the result document if the job finishes
     within N seconds (``Preference-Applied: wait=N``); otherwise ``201`` as usual.
@@ -130,18 +136,17 @@ async def execute(
     The wait holds no thread: the app's job watcher wakes the request when the job is
     done."""
     wait = requested_wait(prefer)
-    identity = get_identity(request)
     job, created, synchronous = await run_in_threadpool(
         submit_job,
-        store,
-        registry,
-        settings,
+        api.store,
+        api.registry,
+        api.settings,
         process_id,
         body.inputs,
         idempotency_key,
-        dispatcher,
+        api.dispatcher,
         wait is not None,
-        identity.name,
+        api.identity.name,
         body.retention_s,
     )
     response.headers["Location"] = job_href(job.job_id)
@@ -150,20 +155,21 @@ async def execute(
     if wait is not None and synchronous:
         watcher: JobWatcher = request.app.state.watcher
         if await wait_while_connected(request, watcher, job.job_id, wait):
-            document = await run_in_threadpool(_finished_document, store, job.job_id)
+            document = await run_in_threadpool(_finished_document, api.store, job.job_id)
             headers = {
                 "Location": response.headers["Location"],
                 "Preference-Applied": f"wait={wait:g}",
             }
-            return JSONResponse(document, status_code=200, headers=headers)
-    return _status(job, identity)
+            return JSONResponse(as_json(document), status_code=200, headers=headers)
+    return _status(job, api)
 
 
-def _status(job: JobRecord, identity: Identity) -> dict[str, Any]:
+def _status(job: JobRecord, api: Api) -> StatusDocument:
+    identity = api.identity
     return status_document(job, worker=identity.sees_workers, owner=identity.sees_owners)
 
 
-def _finished_document(store: JobStore, job_id: str) -> dict[str, Any]:
+def _finished_document(store: JobStore, job_id: str) -> ResultsDocument:
     job = store.get_job(job_id)
     if job is None:  # pragma: no cover - jobs are only deleted by retention, later
         raise NoSuchJob(f"No job {job_id!r}.")

@@ -4,8 +4,8 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 from datetime import datetime
-from typing import Any
 
+from service.ogc.schemas import OgcJobList, OgcLink, OgcStatusInfo
 from service.ogc.urls import PublicUrls, self_and_alternate
 from service.ogc.vocabulary import JSON, REL_EXCEPTIONS, REL_RESULTS
 from worker.contract import JobRecord, JobStatus
@@ -17,7 +17,7 @@ def _iso(value: datetime) -> str:
     return value.isoformat().replace("+00:00", "Z")
 
 
-def status_info(job: JobRecord, urls: PublicUrls) -> dict[str, Any]:
+def status_info(job: JobRecord, urls: PublicUrls) -> OgcStatusInfo:
     """Where a job is: status, progress, the times known so far, and links to itself
     (as JSON and as a page), the job list, its process and (when finished) its results
     or its exception."""
@@ -50,35 +50,41 @@ def status_info(job: JobRecord, urls: PublicUrls) -> dict[str, Any]:
                 "title": "why the job failed",
             }
         )
-    document: dict[str, Any] = {
-        "processID": job.process_id,
-        "type": "process",
-        "jobID": job.job_id,
-        "status": job.status.value,
-        "message": job.message,
-        "progress": max(0, min(100, round(job.progress))),
-        "created": _iso(job.created),
-        "updated": _iso(job.updated),
+    # Times not reached yet are left out (the schema has no null date-time); so is
+    # dexlab's own ``expires`` (statusInfo.yaml allows members it does not list) until
+    # the job has finished: when it and its results are deleted.
+    times = {
+        name: _iso(value)
+        for name, value in (
+            ("started", job.started),
+            ("finished", job.finished),
+            ("expires", job.expires),
+        )
+        if value is not None
     }
-    # Times not reached yet are left out (the schema has no null date-time).
-    if job.started is not None:
-        document["started"] = _iso(job.started)
-    if job.finished is not None:
-        document["finished"] = _iso(job.finished)
-    # dexlab's own member (statusInfo.yaml allows members it does not list): when the
-    # finished job and its results are deleted.
-    if job.expires is not None:
-        document["expires"] = _iso(job.expires)
-    document["links"] = links
-    return document
+    return OgcStatusInfo(
+        processID=job.process_id,
+        type="process",
+        jobID=job.job_id,
+        status=job.status.value,
+        message=job.message,
+        progress=max(0, min(100, round(job.progress))),
+        created=_iso(job.created),
+        updated=_iso(job.updated),
+        **times,
+        links=[OgcLink.model_validate(link) for link in links],
+    )
 
 
 def job_list(
     jobs: Sequence[JobRecord], urls: PublicUrls, self_href: str, next_href: str | None
-) -> dict[str, Any]:
+) -> OgcJobList:
     """A page of jobs, newest first, with ``self``, ``alternate`` (the page as HTML)
     and, when more remain, ``next``."""
     links = self_and_alternate(self_href, "this page of jobs")
     if next_href is not None:
         links.append({"href": next_href, "rel": "next", "type": JSON, "title": "the next page"})
-    return {"jobs": [status_info(job, urls) for job in jobs], "links": links}
+    return OgcJobList(
+        jobs=[status_info(job, urls) for job in jobs],
+        links=[OgcLink.model_validate(link) for link in links],
+    )

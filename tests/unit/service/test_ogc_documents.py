@@ -8,6 +8,7 @@ from datetime import UTC, datetime
 import jsonschema
 import pytest
 
+from service.documents import as_json
 from service.ogc.jobs.documents import job_list, status_info
 from service.ogc.process_documents import inline_refs, process_description, process_summary
 from service.ogc.schemas import OgcJobList, OgcProcess, OgcProcessSummary, OgcStatusInfo
@@ -25,7 +26,7 @@ DEFINITIONS = list(default_registry())
 def test_descriptions_map_every_input_with_a_self_contained_schema(
     definition: ProcessDefinition,
 ) -> None:
-    document = process_description(definition, URLS)
+    document = as_json(process_description(definition, URLS))
     OgcProcess.model_validate(document)  # the documented shape, nothing more
     schema = definition.inputs_schema
     assert set(document["inputs"]) == set(schema["properties"])
@@ -60,7 +61,7 @@ def test_descriptions_map_every_input_with_a_self_contained_schema(
 def test_summaries_say_how_each_process_runs() -> None:
     modes = {}
     for definition in DEFINITIONS:
-        summary = process_summary(definition, URLS)
+        summary = as_json(process_summary(definition, URLS))
         OgcProcessSummary.model_validate(summary)
         assert summary["outputTransmission"] == ["value", "reference"]
         modes[definition.id] = summary["jobControlOptions"]
@@ -103,21 +104,23 @@ def job(status: JobStatus, **kw: object) -> JobRecord:
 
 
 def test_status_info_links_and_times() -> None:
-    queued = status_info(job(JobStatus.ACCEPTED), URLS)
+    queued = as_json(status_info(job(JobStatus.ACCEPTED), URLS))
     OgcStatusInfo.model_validate(queued)
     assert queued["created"] == "2024-05-04T10:13:00Z" and "started" not in queued
     assert [link["rel"] for link in queued["links"]] == ["self", "alternate", "up", "describedby"]
     assert queued["links"][0]["href"] == "https://dexlab.example.org/kin/ogc/jobs/j1"
     assert queued["links"][1]["href"] == "https://dexlab.example.org/kin/ogc/jobs/j1?f=html"
     assert queued["links"][1]["type"] == "text/html"
-    done = status_info(
-        job(
-            JobStatus.SUCCESSFUL,
-            progress=100.0,
-            started=datetime(2024, 5, 4, 10, 14, tzinfo=UTC),
-            finished=datetime(2024, 5, 4, 10, 15, tzinfo=UTC),
-        ),
-        URLS,
+    done = as_json(
+        status_info(
+            job(
+                JobStatus.SUCCESSFUL,
+                progress=100.0,
+                started=datetime(2024, 5, 4, 10, 14, tzinfo=UTC),
+                finished=datetime(2024, 5, 4, 10, 15, tzinfo=UTC),
+            ),
+            URLS,
+        )
     )
     assert (done["started"], done["finished"]) == ("2024-05-04T10:14:00Z", "2024-05-04T10:15:00Z")
     assert done["links"][-1] == {
@@ -126,8 +129,10 @@ def test_status_info_links_and_times() -> None:
         "type": "application/json",
         "title": "the job's results",
     }
-    failed = status_info(job(JobStatus.FAILED), URLS)
+    failed = as_json(status_info(job(JobStatus.FAILED), URLS))
     assert failed["links"][-1]["rel"] == REL_EXCEPTIONS
-    page = job_list([job(JobStatus.RUNNING)], URLS, f"{URLS.ogc}/jobs", f"{URLS.ogc}/jobs?cursor=x")
+    page = as_json(
+        job_list([job(JobStatus.RUNNING)], URLS, f"{URLS.ogc}/jobs", f"{URLS.ogc}/jobs?cursor=x")
+    )
     OgcJobList.model_validate(page)
     assert [link["rel"] for link in page["links"]] == ["self", "alternate", "next"]

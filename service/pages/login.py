@@ -22,8 +22,7 @@ from starlette.responses import Response
 from service.auth.authenticator import Authenticator
 from service.auth.identity import IdentityDep
 from service.auth.sessions import COOKIE_NAME
-from service.deps import SettingsDep
-from service.pages import PagesDep
+from service.deps import ApiDep
 from service.pages.forms import check_csrf, check_form_origin, read_form
 from service.pages.renderer import Pages
 from service.problems import problem_document
@@ -80,26 +79,22 @@ def _page(
     )
 
 
-@router.get("/login", response_model=None)
+@router.get("/login")
 async def login_page(
-    request: Request,
-    identity: IdentityDep,
-    pages: PagesDep,
-    settings: SettingsDep,
-    next: Annotated[str, Query(max_length=_MAX_TARGET)] = "/",
+    request: Request, api: ApiDep, next: Annotated[str, Query(max_length=_MAX_TARGET)] = "/"
 ) -> HTMLResponse:
     table = await _auth(request).table()
     return _page(
         request,
-        pages,
+        api.pages,
         keys_on=table.configured,
         next_path=_local(next),
-        session_s=settings.session_seconds,
+        session_s=api.settings.session_seconds,
     )
 
 
-@router.post("/login", response_model=None)
-async def log_in(request: Request, pages: PagesDep, settings: SettingsDep) -> Response:
+@router.post("/login")
+async def log_in(request: Request, api: ApiDep) -> Response:
     check_form_origin(request)
     form = await read_form(request)
     target = _local(form.get("next", "/"))
@@ -114,8 +109,8 @@ async def log_in(request: Request, pages: PagesDep, settings: SettingsDep) -> Re
             detail="This is not a live API key (unknown, or revoked). Check it and try again.",
         )
         return _page(
-            request, pages, keys_on=True, next_path=target,
-            session_s=settings.session_seconds, problem=problem,
+            request, api.pages, keys_on=True, next_path=target,
+            session_s=api.settings.session_seconds, problem=problem,
         )  # fmt: skip
     response = RedirectResponse(target, status_code=303)
     response.set_cookie(
@@ -131,7 +126,7 @@ async def log_in(request: Request, pages: PagesDep, settings: SettingsDep) -> Re
     return response
 
 
-@router.post("/logout", response_model=None)
+@router.post("/logout")
 async def log_out(request: Request, identity: IdentityDep) -> Response:
     check_form_origin(request)
     form = await read_form(request)

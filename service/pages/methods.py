@@ -12,8 +12,8 @@ from fastapi import APIRouter, Request
 from fastapi.responses import HTMLResponse
 from starlette.exceptions import HTTPException
 
-from service.deps import RegistryDep
-from service.pages import PagesDep, views
+from service.deps import ApiDep
+from service.pages import views
 
 __all__ = ["router"]
 
@@ -30,8 +30,8 @@ _HTML_PAGE: dict[int | str, dict[str, Any]] = {
     response_class=HTMLResponse,
     responses=_HTML_PAGE,
 )
-def list_methods(request: Request, pages: PagesDep, registry: RegistryDep) -> HTMLResponse:
-    return views.method_list_page(request, pages, registry)
+def list_methods(request: Request, api: ApiDep) -> HTMLResponse:
+    return views.method_list_page(request, api.pages, api.registry)
 
 
 @router.get(
@@ -40,11 +40,9 @@ def list_methods(request: Request, pages: PagesDep, registry: RegistryDep) -> HT
     response_class=HTMLResponse,
     responses=_HTML_PAGE,
 )
-def method_page(
-    slug: str, request: Request, pages: PagesDep, registry: RegistryDep
-) -> HTMLResponse:
-    page = views.method_page(request, pages, registry, slug)
+def method_page(slug: str, request: Request, api: ApiDep) -> HTMLResponse:
+    page = views.method_page(request, api.pages, api.registry, slug)
     if page is None:
-        available = ", ".join(pages.methods.slugs()) or "none"
+        available = ", ".join(api.pages.methods.slugs()) or "none"
         raise HTTPException(404, detail=f"No method page {slug!r}; available: {available}.")
     return page

@@ -20,16 +20,15 @@ import json
 from functools import partial
 from typing import Any
 
-from fastapi import APIRouter, Request
-from fastapi.responses import HTMLResponse, RedirectResponse
+from fastapi import APIRouter, Request, Response
+from fastapi.responses import RedirectResponse
 from starlette.concurrency import run_in_threadpool
 
-from service.auth import IdentityDep
-from service.deps import DispatcherDep, RegistryDep, SettingsDep, StoreDep
+from service.deps import ApiDep
 from service.documents import job_href
 from service.errors import dexlab_problem
 from service.job_lookup import missing_job
-from service.pages import PagesDep, views
+from service.pages import views
 from service.pages.forms import check_csrf, check_form_origin, read_form
 from service.problems import problem_document
 from service.request_guard import json_depth
@@ -77,18 +76,10 @@ def _example_index(value: str, count: int) -> int:
     return index if 0 <= index < count else 0
 
 
-@router.post("/processes/{process_id}/run", response_model=None)
-async def run_process(
-    process_id: str,
-    request: Request,
-    store: StoreDep,
-    registry: RegistryDep,
-    settings: SettingsDep,
-    dispatcher: DispatcherDep,
-    pages: PagesDep,
-    identity: IdentityDep,
-) -> RedirectResponse | HTMLResponse:
+@router.post("/processes/{process_id}/run")
+async def run_process(process_id: str, request: Request, api: ApiDep) -> Response:
     check_form_origin(request)
+    store, registry, settings = api.store, api.registry, api.settings
     definition = registry.require(process_id)
     form = await read_form(request)
     check_csrf(request, form)
@@ -99,8 +90,8 @@ async def run_process(
     try:
         inputs = _parse_inputs(text, settings.max_json_depth)
         job, _ = await run_in_threadpool(
-            submit, store, registry, settings, process_id, inputs, None, dispatcher,
-            identity.name,
+            submit, store, registry, settings, process_id, inputs, None, api.dispatcher,
+            api.identity.name,
         )  # fmt: skip
     except _BadText as exc:
         problem = problem_document(
@@ -120,7 +111,7 @@ async def run_process(
     page = await run_in_threadpool(
         partial(views.process_page, examples=examples, status_code=problem["status"]),
         request,
-        pages,
+        api.pages,
         registry,
         definition,
     )
@@ -129,10 +120,9 @@ async def run_process(
     return page
 
 
-@router.post("/jobs/{job_id}/dismiss", response_model=None)
-async def dismiss_job(
-    job_id: str, request: Request, store: StoreDep, identity: IdentityDep
-) -> RedirectResponse:
+@router.post("/jobs/{job_id}/dismiss")
+async def dismiss_job(job_id: str, request: Request, api: ApiDep) -> RedirectResponse:
+    store, identity = api.store, api.identity
     check_form_origin(request)
     check_csrf(request, await read_form(request))
     job = await run_in_threadpool(partial(store.dismiss, job_id, owner=identity.owner_scope))
