@@ -30,6 +30,7 @@ from service.request_id import RequestId
 from service.routes import (
     health,
     job_events,
+    job_pages,
     jobs,
     landing,
     login,
@@ -196,6 +197,7 @@ def create_app(settings: Settings, *, registry: ProcessRegistry | None = None) -
     app.include_router(job_events.router)
     app.include_router(methods.router)
     app.include_router(page_actions.router)
+    app.include_router(job_pages.router)
     app.include_router(login.router)
     app.mount(STATIC_PREFIX, StaticFiles(directory=STATIC_DIR), name="pages-static")
 

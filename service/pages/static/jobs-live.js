@@ -1,0 +1,41 @@
+// The jobs list keeps itself current: while the tab is visible it asks for this same
+// page every few seconds and swaps in the new listing (statuses, progress, durations).
+// Without JavaScript the page reloads itself while a listed job is queued or running.
+(function () {
+  "use strict";
+  var listing = document.getElementById("jobs-listing");
+  if (!listing || !window.fetch || !window.DOMParser) {
+    return;
+  }
+  var seconds = Number(listing.dataset.refreshSeconds) || 5;
+  var busy = false;
+
+  function refresh() {
+    if (busy || document.visibilityState === "hidden") {
+      return;
+    }
+    busy = true;
+    fetch(window.location.href, { headers: { Accept: "text/html" }, credentials: "same-origin" })
+      .then(function (response) {
+        return response.ok ? response.text() : null;
+      })
+      .then(function (html) {
+        if (!html) {
+          return;
+        }
+        var fresh = new DOMParser().parseFromString(html, "text/html").getElementById("jobs-listing");
+        if (fresh && fresh.innerHTML !== listing.innerHTML) {
+          var adopted = document.importNode(fresh, true);
+          listing.replaceWith(adopted);
+          listing = adopted;
+        }
+        listing.dataset.refreshedAt = new Date().toISOString();
+      })
+      .catch(function () {})
+      .then(function () {
+        busy = false;
+      });
+  }
+
+  window.setInterval(refresh, seconds * 1000);
+})();
