@@ -4,6 +4,8 @@ JavaScript; with it, the job page asks in a dialog and posts directly)."""
 
 from __future__ import annotations
 
+from typing import Any
+
 from fastapi import Request
 from fastapi.responses import HTMLResponse
 
@@ -19,6 +21,18 @@ __all__ = ["dismiss_question_page", "rerun_page"]
 _MAX_ROWS = 24
 
 
+def _tidy(value: Any) -> Any:
+    """Whole numbers stored as floats (``30.0``) written as people type them (``30``):
+    the same JSON number to the service."""
+    if isinstance(value, float) and value.is_integer() and abs(value) < 2**53:
+        return int(value)
+    if isinstance(value, list):
+        return [_tidy(v) for v in value]
+    if isinstance(value, dict):
+        return {k: _tidy(v) for k, v in value.items()}
+    return value
+
+
 def rerun_page(
     request: Request,
     pages: Pages,
@@ -28,7 +42,7 @@ def rerun_page(
 ) -> HTMLResponse:
     """The process page with a first form holding ``job``'s inputs, ready to edit and
     run; the worked examples follow."""
-    text = compact_json(dict(job.inputs))
+    text = compact_json(_tidy(dict(job.inputs)))
     rerun = {
         "title": f"Edit and run again: the inputs of job {job.job_id[:8]}",
         "description": "These are the inputs that job ran with; change what you like "
