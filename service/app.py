@@ -37,6 +37,7 @@ from service.routes import (
     methods,
     page_actions,
     processes,
+    queue_page,
 )
 from service.routes.process_operations import (
     execution_router,
@@ -198,6 +199,7 @@ def create_app(settings: Settings, *, registry: ProcessRegistry | None = None) -
     app.include_router(methods.router)
     app.include_router(page_actions.router)
     app.include_router(job_pages.router)
+    app.include_router(queue_page.router)
     app.include_router(login.router)
     app.mount(STATIC_PREFIX, StaticFiles(directory=STATIC_DIR), name="pages-static")
 

@@ -181,7 +181,7 @@ def _page_paths(server: Deployment) -> list[str]:
     study = jobs["design-study"]
     chunks = server.client.get("/v1/jobs", params={"parent": study}).json()["jobs"]
     return [
-        "/", "/v1/processes", "/v1/jobs", "/methods", "/login", "/v1/jobs/no-such-job",
+        "/", "/v1/processes", "/v1/jobs", "/queue", "/methods", "/login", "/v1/jobs/no-such-job",
         *(f"/v1/processes/{p}" for p in jobs),
         *(f"/v1/jobs/{j}" for j in [*jobs.values(), dismissed]),
         *(f"/v1/jobs/{c['jobID']}" for c in chunks[:1]),
@@ -235,3 +235,31 @@ def test_a_process_description_is_folded_to_its_first_sentence(
             default_registry().ids()
         )
         assert not offline.external, offline.external
+
+
+def test_the_queue_page_shows_running_work_workers_and_throughput(
+    server: Deployment, browser: Any, shots: Path
+) -> None:
+    done = submit(server, "fourbar-grashof", FOURBAR)
+    assert finished(server, done)["status"] == "successful"
+    job_id = submit(server, "planar3r-dexterity-map", LONG_MAP)
+    try:
+        with open_page(browser) as offline:
+            page = offline.page
+            page.goto(f"{server.base_url}/")
+            page.get_by_role("navigation", name="Main").get_by_role("link", name="Queue").click()
+            page.wait_for_url("**/queue")
+            # the page follows the queue by itself until the job runs
+            page.locator(
+                f'#queue-listing tr:has(a[href="/v1/jobs/{job_id}"]) .status-running'
+            ).wait_for(timeout=TIMEOUT_MS)
+            row = page.locator('table.queue tr:has(a[href="/v1/processes/planar3r-dexterity-map"])')
+            assert row.locator("td").nth(1).inner_text() == "1"  # running
+            beats = page.locator("table.workers tbody tr").all_inner_texts()
+            assert beats and all(" ago)" in b for b in beats), beats
+            finished_lately = page.locator("#throughput strong").first.inner_text()
+            assert int(finished_lately) >= 1
+            page.screenshot(path=str(shots / "queue-page.png"), full_page=True)
+            assert not offline.external and not offline.console_errors, offline
+    finally:
+        server.client.delete(f"/v1/jobs/{job_id}")

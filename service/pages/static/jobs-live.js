@@ -1,9 +1,10 @@
-// The jobs list keeps itself current: while the tab is visible it asks for this same
-// page every few seconds and swaps in the new listing (statuses, progress, durations).
-// Without JavaScript the page reloads itself while a listed job is queued or running.
+// A listing that keeps itself current (the jobs list, the queue): while the tab is
+// visible it asks for this same page every few seconds and swaps in the new content of
+// the element marked data-refresh-seconds (statuses, progress, durations).  Without
+// JavaScript the jobs list reloads itself while a listed job is queued or running.
 (function () {
   "use strict";
-  var listing = document.getElementById("jobs-listing");
+  var listing = document.querySelector("[data-refresh-seconds][id]");
   if (!listing || !window.fetch || !window.DOMParser) {
     return;
   }
@@ -23,7 +24,7 @@
         if (!html) {
           return;
         }
-        var fresh = new DOMParser().parseFromString(html, "text/html").getElementById("jobs-listing");
+        var fresh = new DOMParser().parseFromString(html, "text/html").getElementById(listing.id);
         if (fresh && fresh.innerHTML !== listing.innerHTML) {
           var adopted = document.importNode(fresh, true);
           listing.replaceWith(adopted);
