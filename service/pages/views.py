@@ -172,6 +172,7 @@ def job_list_page(
         "next_href": next_href,
         "first_href": first_href,
         "json_href": f"/v1/jobs?{urlencode(query)}",
+        "compare": True,
     }
     return pages.render(request, "jobs.html", context)
 

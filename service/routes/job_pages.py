@@ -1,4 +1,4 @@
-"""Pages about one job, beside its status page (``/pages/``, not in the OpenAPI
+"""Pages about jobs, beside their status pages (``/pages/``, not in the OpenAPI
 document; no JavaScript needed):
 
 - ``GET /pages/jobs/{jobID}/edit``: "Edit and run again": the job's process page with
@@ -6,6 +6,9 @@ document; no JavaScript needed):
 - ``GET /pages/jobs/{jobID}/dismiss``: the question before a job is dismissed, whose
   button posts ``/pages/jobs/{jobID}/dismiss`` (:mod:`service.routes.page_actions`).
   A job that can no longer be dismissed goes back to its page (303).
+- ``GET /pages/compare?jobs=A&jobs=B...``: two to six jobs of one process side by side
+  (the jobs list's check boxes submit it); jobs of different processes are a 422
+  naming ``query.jobs``.
 
 A job is the caller's: another owner's job is 404, an expired one 410, as on
 ``/v1/jobs/{jobID}``.
@@ -13,7 +16,9 @@ A job is the caller's: another owner's job is 404, an expired one 410, as on
 
 from __future__ import annotations
 
-from fastapi import APIRouter, Request
+from typing import Annotated
+
+from fastapi import APIRouter, Query, Request
 from fastapi.responses import HTMLResponse, RedirectResponse
 
 from service.auth import IdentityDep
@@ -21,15 +26,17 @@ from service.deps import RegistryDep, StoreDep
 from service.documents import job_href
 from service.job_lookup import find_job
 from service.pages import PagesDep
+from service.pages.comparison import comparison_context
 from service.pages.job_forms import dismiss_question_page, rerun_page
+from service.problems import parameter_error
 from worker.contract import JobStatus
 
 __all__ = ["router"]
 
-router = APIRouter(prefix="/pages/jobs", include_in_schema=False)
+router = APIRouter(prefix="/pages", include_in_schema=False)
 
 
-@router.get("/{job_id}/edit", response_model=None)
+@router.get("/jobs/{job_id}/edit", response_model=None)
 def edit_and_run_again(
     job_id: str,
     request: Request,
@@ -43,7 +50,7 @@ def edit_and_run_again(
     return rerun_page(request, pages, registry, definition, job)
 
 
-@router.get("/{job_id}/dismiss", response_model=None)
+@router.get("/jobs/{job_id}/dismiss", response_model=None)
 def confirm_dismissal(
     job_id: str,
     request: Request,
@@ -56,3 +63,27 @@ def confirm_dismissal(
     if job.status is JobStatus.DISMISSED:
         return RedirectResponse(job_href(job_id), status_code=303)
     return dismiss_question_page(request, pages, registry, job)
+
+
+#: Jobs compared at most.
+MAX_COMPARED = 6
+
+
+@router.get("/compare", response_model=None)
+def compare_jobs(
+    request: Request,
+    store: StoreDep,
+    pages: PagesDep,
+    identity: IdentityDep,
+    jobs: Annotated[list[str], Query(min_length=2, max_length=MAX_COMPARED)],
+) -> HTMLResponse:
+    found = [find_job(store, job_id, identity.owner_scope) for job_id in dict.fromkeys(jobs)]
+    if len(found) < 2:
+        raise parameter_error("query", "jobs", "name at least two different jobs")
+    processes = sorted({j.process_id for j in found})
+    if len(processes) > 1:
+        raise parameter_error("query", "jobs", f"jobs of one process only, not of {processes}")
+    results = [
+        store.get_result(j.job_id) if j.status is JobStatus.SUCCESSFUL else None for j in found
+    ]
+    return pages.render(request, "compare.html", comparison_context(found, results))

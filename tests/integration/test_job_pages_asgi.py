@@ -13,6 +13,7 @@ import pytest
 
 from tests.integration.test_api_asgi import poll
 from tests.integration.test_pages_asgi import FOURBAR, PAGE, SAME_ORIGIN, run_fourbar
+from worker.registry import default_registry
 
 pytestmark = [pytest.mark.integration, pytest.mark.anyio]
 
@@ -96,3 +97,48 @@ async def test_the_jobs_list_shows_durations_and_refreshes(asgi_client: httpx.As
     assert re.search(r'<td class="num">(\d+\.\d s|\d+ s)</td>', row), row
     assert 'id="jobs-listing" data-refresh-seconds="5"' in page and "jobs-live.js" in page
     assert 'http-equiv="refresh"' not in page  # nothing running: no reloads without JS
+
+
+async def test_compare_two_jobs_of_one_process(asgi_client: httpx.AsyncClient) -> None:
+    first = await run_fourbar(asgi_client)
+    other = {**FOURBAR, "lengths": [30, 17, 18, 40]}
+    r = await asgi_client.post("/v1/processes/fourbar-grashof/execution", json={"inputs": other})
+    second = r.json()["jobID"]
+    assert (await poll(asgi_client, second))["status"] == "successful"
+    page = await asgi_client.get("/pages/compare", params={"jobs": [first, second]})
+    assert page.status_code == 200, page.text
+    rows = {
+        m.group(2): m.group(0)
+        for m in re.finditer(
+            r'<tr( class="differs")?><th scope="row"><code>([^<]+)</code>.*?</tr>', page.text, re.S
+        )
+    }
+    assert 'class="differs"' in rows["lengths"] and "[30.0, 17.0, 18.0, 40.0]" in rows["lengths"]
+    assert 'class="differs"' not in rows["ground"] and 'class="differs"' not in rows["length_unit"]
+    margin = rows["criterion.margin"]  # p + q - (s + l) differs with l
+    assert 'class="differs"' in margin and '<span class="delta">(' in margin
+    assert "(1 differ)" in page.text  # of the inputs: the lengths
+    assert page.text.count('<figure class="plot">') >= 2
+    assert f"/v1/jobs/{first}/results/fourbar_motion.png" in page.text
+    assert f"/v1/jobs/{second}/results/fourbar_motion.png" in page.text
+    listing = (await asgi_client.get("/v1/jobs", headers=PAGE)).text
+    assert f'<input type="checkbox" name="jobs" value="{first}" form="compare-form"' in listing
+    assert '<form method="get" action="/pages/compare" id="compare-form"' in listing
+
+
+async def test_compare_refuses_one_job_and_mixed_processes(asgi_client: httpx.AsyncClient) -> None:
+    fourbar = await run_fourbar(asgi_client)
+    chains = default_registry().require("chain-parallelism").examples[0].inputs
+    r = await asgi_client.post("/v1/processes/chain-parallelism/execution",
+                               json={"inputs": dict(chains)})  # fmt: skip
+    other = r.json()["jobID"]
+    mixed = await asgi_client.get("/pages/compare", params={"jobs": [fourbar, other]})
+    # a page action: its problems are pages, naming the field
+    assert mixed.status_code == 422 and mixed.headers["content-type"].startswith("text/html")
+    assert "query.jobs" in mixed.text and "one process only" in mixed.text
+    one = await asgi_client.get("/pages/compare", params={"jobs": [fourbar, fourbar]})
+    assert one.status_code == 422 and "at least two different jobs" in one.text
+    single = await asgi_client.get("/pages/compare", params={"jobs": [fourbar]})
+    assert single.status_code == 422 and "query.jobs" in single.text
+    missing = await asgi_client.get("/pages/compare", params={"jobs": [fourbar, "nope"]})
+    assert missing.status_code == 404

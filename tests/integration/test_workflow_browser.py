@@ -177,6 +177,9 @@ def _page_paths(server: Deployment) -> list[str]:
     server.client.delete(f"/v1/jobs/{dismissed}")
     for job_id in jobs.values():
         assert finished(server, job_id, timeout=600)["status"] == "successful", job_id
+    spm = registry.require("spm-conditioning-map").examples[1].inputs
+    again = submit(server, "spm-conditioning-map", dict(spm))  # to compare with the first
+    assert finished(server, again, timeout=600)["status"] == "successful"
     methods = {d.method_doc for d in registry if d.method_doc}
     study = jobs["design-study"]
     chunks = server.client.get("/v1/jobs", params={"parent": study}).json()["jobs"]
@@ -187,6 +190,7 @@ def _page_paths(server: Deployment) -> list[str]:
         *(f"/v1/jobs/{c['jobID']}" for c in chunks[:1]),
         *(f"/methods/{m}" for m in sorted(methods)),
         f"/pages/jobs/{study}/edit", f"/pages/jobs/{jobs['fourbar-grashof']}/dismiss",
+        f"/pages/compare?jobs={jobs['spm-conditioning-map']}&jobs={again}",
         "/ogc/?f=html", "/ogc/processes?f=html", "/ogc/jobs?f=html",
         f"/ogc/jobs/{study}?f=html", f"/ogc/jobs/{study}/results?f=html",
     ]  # fmt: skip
@@ -263,3 +267,31 @@ def test_the_queue_page_shows_running_work_workers_and_throughput(
             assert not offline.external and not offline.console_errors, offline
     finally:
         server.client.delete(f"/v1/jobs/{job_id}")
+
+
+@pytest.mark.parametrize("javascript", [True, False], ids=["js", "no-js"])
+def test_compare_two_jobs_from_the_jobs_list(
+    server: Deployment, browser: Any, shots: Path, javascript: bool
+) -> None:
+    first = submit(server, "fourbar-grashof", FOURBAR)
+    second = submit(server, "fourbar-grashof", {**FOURBAR, "lengths": [30, 17, 18, 40]})
+    for job_id in (first, second):
+        assert finished(server, job_id)["status"] == "successful"
+    with open_page(browser, javascript=javascript) as offline:
+        page = offline.page
+        page.goto(f"{server.base_url}/v1/jobs/{first}")
+        page.get_by_role("link", name="Compare with other jobs").click()
+        page.wait_for_url("**/v1/jobs?processID=fourbar-grashof")
+        page.get_by_label(f"Compare job {first[:8]}").check()
+        page.get_by_label(f"Compare job {second[:8]}").check()
+        if javascript:  # a refresh of the list keeps what was ticked
+            page.locator("#jobs-listing[data-refreshed-at]").wait_for(timeout=TIMEOUT_MS)
+            assert page.get_by_label(f"Compare job {first[:8]}").is_checked()
+        page.get_by_role("button", name="Compare the selected jobs").click()
+        page.wait_for_url("**/pages/compare?*")
+        differs = page.locator("table.compare tr.differs th code").all_inner_texts()
+        assert "lengths" in differs and "ground" not in differs
+        assert page.locator(".compare-plots img").count() >= 2
+        if javascript:
+            page.screenshot(path=str(shots / "compare-page.png"), full_page=True)
+        assert not offline.external and not offline.console_errors, offline

@@ -27,6 +27,14 @@
         var fresh = new DOMParser().parseFromString(html, "text/html").getElementById(listing.id);
         if (fresh && fresh.innerHTML !== listing.innerHTML) {
           var adopted = document.importNode(fresh, true);
+          // keep what the user ticked (the jobs to compare)
+          listing.querySelectorAll("input[type=checkbox]:checked").forEach(function (box) {
+            adopted.querySelectorAll("input[type=checkbox]").forEach(function (other) {
+              if (other.name === box.name && other.value === box.value) {
+                other.checked = true;
+              }
+            });
+          });
           listing.replaceWith(adopted);
           listing = adopted;
         }
