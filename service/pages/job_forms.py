@@ -11,11 +11,11 @@ from fastapi.responses import HTMLResponse
 
 from service.documents import status_document
 from service.pages.renderer import Pages
-from service.pages.views import compact_json, example_forms, process_page
+from service.pages.views import ExampleForm, compact_json, example_forms, process_page
 from worker.contract import JobRecord, JobStatus
 from worker.processes import ProcessDefinition, ProcessRegistry
 
-__all__ = ["dismiss_question_page", "rerun_page"]
+__all__ = ["dismiss_question_page", "rerun_form", "rerun_page"]
 
 #: Rows of the inputs box at most (it scrolls beyond).
 _MAX_ROWS = 24
@@ -33,6 +33,21 @@ def _tidy(value: Any) -> Any:
     return value
 
 
+def rerun_form(job_id: str, text: str) -> ExampleForm:
+    """The form holding job ``job_id``'s inputs as ``text`` (JSON), first on the page;
+    it posts ``from`` so that a refused run comes back in this form."""
+    return {
+        "title": f"Edit and run again: the inputs of job {job_id[:8]}",
+        "description": "These are the inputs that job ran with; change what you like "
+        "and run them as a new job.",
+        "text": text,
+        "problem": None,
+        "rows": min(max(text.count("\n") + 2, 4), _MAX_ROWS),
+        "button": "Run as a new job",
+        "source_job": job_id,
+    }
+
+
 def rerun_page(
     request: Request,
     pages: Pages,
@@ -42,17 +57,7 @@ def rerun_page(
 ) -> HTMLResponse:
     """The process page with a first form holding ``job``'s inputs, ready to edit and
     run; the worked examples follow."""
-    text = compact_json(_tidy(dict(job.inputs)))
-    rerun = {
-        "title": f"Edit and run again: the inputs of job {job.job_id[:8]}",
-        "description": "These are the inputs that job ran with; change what you like "
-        "and run them as a new job.",
-        "text": text,
-        "problem": None,
-        "rows": min(max(text.count("\n") + 2, 4), _MAX_ROWS),
-        "button": "Run as a new job",
-        "source_job": job.job_id,
-    }
+    rerun = rerun_form(job.job_id, compact_json(_tidy(dict(job.inputs))))
     return process_page(request, pages, registry, definition,
                         examples=[rerun, *example_forms(definition)])  # fmt: skip
 

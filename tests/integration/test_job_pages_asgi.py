@@ -62,6 +62,7 @@ async def test_edit_and_run_again_prefills_the_form_and_runs_a_new_job(
     prefilled = json.loads(textarea(r.text))  # as stored: with the defaults filled in
     assert FOURBAR.items() <= prefilled.items() and prefilled["plots"] is True
     assert 'action="/pages/processes/fourbar-grashof/run"' in r.text
+    assert f'<input type="hidden" name="from" value="{job_id}">' in r.text
     edited = {**FOURBAR, "lengths": [30, 17, 18, 20]}
     r = await asgi_client.post("/pages/processes/fourbar-grashof/run",
                                data={"inputs": json.dumps(edited), "example": "0"},
@@ -70,6 +71,13 @@ async def test_edit_and_run_again_prefills_the_form_and_runs_a_new_job(
     new_id = r.headers["location"].removeprefix("/v1/jobs/")
     assert new_id != job_id
     assert (await poll(asgi_client, new_id))["status"] == "successful"
+    bad = json.dumps({**FOURBAR, "lengths": [1, 1, 1, 100]})
+    refused = await asgi_client.post("/pages/processes/fourbar-grashof/run",
+                                     data={"inputs": bad, "example": "0", "from": job_id},
+                                     headers=SAME_ORIGIN)  # fmt: skip
+    assert refused.status_code == 422 and "the loop cannot close" in refused.text
+    assert f"the inputs of job {job_id[:8]}" in refused.text  # back in the re-run form
+    assert json.loads(textarea(refused.text)) == json.loads(bad)
     missing = await asgi_client.get("/pages/jobs/no-such-job/edit")
     assert missing.status_code == 404
 
