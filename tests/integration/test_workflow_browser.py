@@ -191,7 +191,8 @@ def _page_paths(server: Deployment) -> list[str]:
         *(f"/methods/{m}" for m in sorted(methods)),
         f"/pages/jobs/{study}/edit", f"/pages/jobs/{jobs['fourbar-grashof']}/dismiss",
         f"/pages/compare?jobs={jobs['spm-conditioning-map']}&jobs={again}",
-        "/ogc/?f=html", "/ogc/processes?f=html", "/ogc/jobs?f=html",
+        "/ogc/?f=html", "/ogc/conformance?f=html", "/ogc/processes?f=html",
+        "/ogc/processes/fourbar-grashof?f=html", "/ogc/jobs?f=html", "/docs", "/redoc",
         f"/ogc/jobs/{study}?f=html", f"/ogc/jobs/{study}/results?f=html",
     ]  # fmt: skip
 
@@ -209,7 +210,7 @@ def test_no_page_is_wider_than_a_phone(server: Deployment, browser: Any, shots: 
                 wide[path] = width
                 page.screenshot(path=str(shots / f"too-wide-{len(wide)}.png"), full_page=True)
         assert not wide, wide
-        page.goto(server.base_url + paths[-5])  # a study's job page
+        page.goto(f"{server.base_url}/v1/jobs/{paths[-1].split('/')[3]}")  # a study's page
         page.screenshot(path=str(shots / "study-page-phone.png"), full_page=True)
         # the only console error: the problem page's own 404
         assert offline.console_errors == [
