@@ -23,7 +23,16 @@ from service.metrics import install_metrics
 from service.ogc.forwarded import ForwardedHeaders
 from service.ogc.router import ogc_router
 from service.openapi import install_openapi
-from service.pages import STATIC_DIR, STATIC_PREFIX, Pages, actions, login, methods
+from service.pages import (
+    STATIC_DIR,
+    STATIC_PREFIX,
+    Pages,
+    actions,
+    job_pages,
+    login,
+    methods,
+    queue_page,
+)
 from service.pages import routes as v1_pages
 from service.problems import PROBLEM_TYPES, problem_response
 from service.request_guard import RequestGuard
@@ -192,6 +201,8 @@ def create_app(settings: Settings, *, registry: ProcessRegistry | None = None) -
     app.include_router(job_events.router)
     app.include_router(methods.router)
     app.include_router(actions.router)
+    app.include_router(job_pages.router)
+    app.include_router(queue_page.router)
     app.include_router(login.router)
     app.mount(STATIC_PREFIX, StaticFiles(directory=STATIC_DIR), name="pages-static")
 

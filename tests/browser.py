@@ -73,9 +73,14 @@ class OfflinePage:
 
 
 @contextmanager
-def open_page(browser: Any, *, width: int = 1280, height: int = 900) -> Iterator[OfflinePage]:
-    """A fresh browser context and page at ``width`` x ``height`` CSS pixels."""
-    context = browser.new_context(viewport={"width": width, "height": height})
+def open_page(
+    browser: Any, *, width: int = 1280, height: int = 900, javascript: bool = True
+) -> Iterator[OfflinePage]:
+    """A fresh browser context and page at ``width`` x ``height`` CSS pixels (with
+    JavaScript off if ``javascript`` is false)."""
+    context = browser.new_context(
+        viewport={"width": width, "height": height}, java_script_enabled=javascript
+    )
     page = context.new_page()
     offline = OfflinePage(page)
 

@@ -14,6 +14,7 @@ from importlib.metadata import PackageNotFoundError, version
 import click
 
 from dexlab.cli import jobs, keys, processes, server
+from dexlab.cli.job_ids import AmbiguousJobId
 
 __all__ = ["cli", "main"]
 
@@ -51,6 +52,9 @@ def main(argv: Sequence[str] | None = None) -> None:
     except click.exceptions.NoArgsIsHelpError as exc:  # "dexlab" alone: the help
         sys.stderr.write(exc.format_message() + "\n")
         raise SystemExit(2) from None
+    except AmbiguousJobId as exc:  # the candidates, one per line
+        sys.stderr.write(f"dexlab: {exc.format_message()}\n")
+        raise SystemExit(exc.exit_code) from None
     except click.UsageError as exc:
         hint = f" (try '{exc.ctx.command_path} --help')" if exc.ctx is not None else ""
         message = " ".join(exc.format_message().split())

@@ -2,7 +2,9 @@
 
 Exit status: 0 done; 1 the service refused the request, the job failed or was dismissed,
 or the service could not be reached (one block on stderr: the problem and the fields it
-names); 2 a usage error (one line); 130 interrupted.
+names); 2 a usage error (one line), or a job ID prefix that starts several job IDs (the
+candidates listed); 130 interrupted.  Wherever a command takes a job (``JOB``), any
+unique prefix of its ID will do (:mod:`dexlab.cli.job_ids`).
 """
 
 from __future__ import annotations
@@ -15,6 +17,7 @@ from typing import IO, Any
 import click
 
 from dexlab.cli.client_options import client_options, open_client, reported_errors
+from dexlab.cli.job_ids import find_job
 from dexlab.cli.render import print_json, print_results, print_status, print_status_table
 from dexlab.client import Client
 from dexlab.documents import example_inputs
@@ -164,7 +167,7 @@ def run(process_id: str, source: IO[str] | None, example: int | None, wait: bool
 def status(job_id: str, url: str, api_key: str | None, as_json: bool) -> None:
     """Show a job's status."""
     with reported_errors(as_json), open_client(url, api_key) as client:
-        found = client.job(job_id).last_status
+        found = find_job(client, job_id).last_status
     print_json(found.document) if as_json else print_status(found)
 
 
@@ -182,7 +185,7 @@ def results(job_id: str, directory: Path | None, url: str, api_key: str | None,
             as_json: bool) -> None:  # fmt: skip
     """Show a finished job's results (and download its files)."""
     with reported_errors(as_json), open_client(url, api_key) as client:
-        job = client.job(job_id)
+        job = find_job(client, job_id)
         job.results()  # a job that has not ended: result-not-ready, exit 1
         _finish(job, directory, as_json, _Descriptions(client))
 
@@ -218,7 +221,7 @@ def list_jobs(status_filter: str | None, process: str | None, limit: int, url: s
 def cancel(job_id: str, url: str, api_key: str | None, as_json: bool) -> None:
     """Dismiss a job: a queued job never runs, a running one stops, results are deleted."""
     with reported_errors(as_json), open_client(url, api_key) as client:
-        found = client.job(job_id).cancel()
+        found = find_job(client, job_id).cancel()
     if as_json:
         print_json(found.document)
     else:

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import json
 import os
-from collections.abc import Iterable, Mapping, Sequence
+from collections.abc import Mapping, Sequence
 from pathlib import Path
 from typing import Any
 
@@ -14,6 +14,7 @@ from rich.console import Console
 from rich.table import Table
 from rich.text import Text
 
+from dexlab.cli.job_table import duration_s, duration_text, status_table
 from dexlab.documents import Artifact, JobStatus
 from dexlab.errors import DexlabError, InvalidInputs
 from dexlab.quantities import ResultPaths, ResultQuantity
@@ -112,6 +113,11 @@ def _status_rows(status: JobStatus) -> list[tuple[str, str]]:
         ("message", status.message),
     ]
     rows += [(key, str(doc[key])) for key in ("created", "started", "finished") if doc.get(key)]
+    took = duration_s(doc)
+    if took is not None:
+        rows.append(("duration", duration_text(took)))
+    if doc.get("expires"):
+        rows.append(("expires", str(doc["expires"])))
     if "attempts" in doc:
         rows.append(("attempts", f"{doc['attempts']} of {doc.get('max_attempts', '?')}"))
     if status.error:
@@ -128,17 +134,11 @@ def print_status(status: JobStatus) -> None:
     _console().print(table)
 
 
-def print_status_table(statuses: Iterable[JobStatus], more: bool = False) -> None:
-    """Jobs, one per row; ``more``: the listing was cut at the limit."""
-    table = Table(title="Jobs, newest first", title_justify="left")
-    for column in ("Job", "Process", "Status", "Progress", "Created", "Message"):
-        table.add_column(column, no_wrap=column in ("Job", "Status"))
-    for status in statuses:
-        created = str(status.document.get("created") or "")[:19].replace("T", " ")
-        table.add_row(Text(status.job_id), Text(status.process_id), Text(status.status),
-                      f"{status.progress}%", created, Text(status.message))  # fmt: skip
+def print_status_table(statuses: Sequence[JobStatus], more: bool = False) -> None:
+    """Jobs, one line each within 80 columns (see :mod:`dexlab.cli.job_table`);
+    ``more``: the listing was cut at the limit."""
     console = _console()
-    console.print(table)
+    console.print(status_table(statuses))
     if more:
         console.print("More jobs than shown: --limit N shows more, --limit 0 all.")
 

@@ -3,7 +3,8 @@
 - ``POST /pages/processes/{processID}/run``: the (edited) JSON of a worked example,
   as the form field ``inputs``; a job is queued and the browser is sent to its page
   (303).  JSON that does not parse, or inputs that do not validate, re-render the
-  process page with the problem and the user's text kept.
+  process page with the problem and the user's text kept (in the "Edit and run again"
+  form when the field ``from`` names the job it came from).
 - ``POST /pages/jobs/{jobID}/dismiss``: cancel a queued or running job, or delete a
   finished one's results, then back to the job's page (303).
 
@@ -30,6 +31,7 @@ from service.errors import dexlab_problem
 from service.job_lookup import missing_job
 from service.pages import views
 from service.pages.forms import check_csrf, check_form_origin, read_form
+from service.pages.job_forms import rerun_form
 from service.problems import problem_document
 from service.request_guard import json_depth
 from worker.errors import (
@@ -86,6 +88,10 @@ async def run_process(process_id: str, request: Request, api: ApiDep) -> Respons
     text = form.get("inputs", "")
     examples = views.example_forms(definition)
     index = _example_index(form.get("example", ""), len(examples))
+    source_job = form.get("from", "")[:64]
+    if source_job:  # "Edit and run again": a refused run comes back in that form
+        examples.insert(0, rerun_form(source_job, text))
+        index = 0
     retry_after: str | None = None
     try:
         inputs = _parse_inputs(text, settings.max_json_depth)

@@ -20,6 +20,7 @@ from fastapi import Depends, Request
 from fastapi.responses import HTMLResponse
 from markupsafe import Markup
 
+from service.pages.descriptions import lead_and_rest
 from service.pages.forms import form_protection
 from service.pages.method_docs import MethodDocs
 from service.pages.result_view import format_scalar
@@ -100,6 +101,7 @@ def _environment() -> jinja2.Environment:
     env.filters["filesize"] = _file_size
     env.filters["when"] = _when
     env.filters["method_links"] = link_method_pages
+    env.filters["lead_and_rest"] = lead_and_rest
     env.globals["static"] = lambda path: f"{STATIC_PREFIX}/{path}"
     return env
 

@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import json
 from collections.abc import Mapping, Sequence
+from datetime import UTC, datetime
 from typing import Any
 from urllib.parse import urlencode
 
@@ -16,6 +17,7 @@ from fastapi.responses import HTMLResponse
 
 from service.documents import artifact_link, as_json, job_href, status_document
 from service.pages.input_table import input_rows
+from service.pages.job_timing import duration_s, duration_text, job_timing
 from service.pages.quantities import job_quantities
 from service.pages.renderer import Pages
 from service.pages.result_view import result_view
@@ -156,8 +158,13 @@ def job_list_page(
     first_href = f"/v1/jobs?{urlencode(filters)}" if "cursor" in request.query_params else ""
     query = dict(request.query_params)
     query["f"] = "json"
+    now = datetime.now(UTC)
     context = {
-        "jobs": [as_json(status_document(j)) for j in page.jobs],
+        "jobs": [
+            {**as_json(status_document(j)), "duration": duration_text(duration_s(j, now))}
+            for j in page.jobs
+        ],
+        "live": any(j.status in (JobStatus.ACCEPTED, JobStatus.RUNNING) for j in page.jobs),
         "statuses": [s.value for s in JobStatus],
         "process_ids": registry.ids(),
         "status": status.value if status is not None else "",
@@ -166,6 +173,7 @@ def job_list_page(
         "next_href": next_href,
         "first_href": first_href,
         "json_href": f"/v1/jobs?{urlencode(query)}",
+        "compare": True,
     }
     return pages.render(request, "jobs.html", context)
 
@@ -247,6 +255,8 @@ def job_page(
         "live": live,
         "finished": finished,
         "dismiss_label": ("Cancel this job" if live else "Delete the results" if finished else ""),
+        "timing": job_timing(job, datetime.now(UTC)),
+        "rerun_href": f"/pages/jobs/{job.job_id}/edit" if definition is not None else "",
         "problem": _failure(job),
         "plots": [],
         "notes": [],

@@ -33,9 +33,9 @@ def server(tmp_path_factory: pytest.TempPathFactory) -> Iterator[Deployment]:
         yield dep
 
 
-def dexlab(server: Deployment, *args: str, stdin: str | None = None,
-           timeout: float = 120) -> subprocess.CompletedProcess[str]:  # fmt: skip
-    env = {k: v for k, v in os.environ.items() if k != "DEXLAB_API_KEY"}
+def dexlab(server: Deployment, *args: str, stdin: str | None = None, timeout: float = 120,
+           env: dict[str, str] | None = None) -> subprocess.CompletedProcess[str]:  # fmt: skip
+    env = {k: v for k, v in os.environ.items() if k != "DEXLAB_API_KEY"} | (env or {})
     env["DEXLAB_URL"] = server.base_url
     done = subprocess.run([*dexlab_command(), *args], input=stdin, capture_output=True,
                           text=True, env=env, timeout=timeout)  # fmt: skip
@@ -93,8 +93,13 @@ def test_human_output_is_tables(server: Deployment) -> None:
     submitted = dexlab(server, "run", "chain-parallelism", "--example", "1")
     assert submitted.returncode == 0 and "submitted" in submitted.stdout
     job_id = submitted.stdout.split()[1]
-    assert job_id in dexlab(server, "jobs", "--limit", "0").stdout
-    assert "chain-parallelism" in dexlab(server, "status", job_id).stdout
+    listed = dexlab(server, "jobs", "--limit", "0", env={"COLUMNS": "80"}).stdout.splitlines()
+    assert max(len(line) for line in listed) <= 80
+    row = next(line.split() for line in listed if line and job_id.startswith(line.split()[0]))
+    assert row[1] == "chain-parallelism" and len(row[0]) < len(job_id)
+    # the short ID the table shows is accepted back, as is any unique prefix
+    assert "chain-parallelism" in dexlab(server, "status", row[0]).stdout
+    assert parsed(dexlab(server, "status", job_id[:13], "--json"))["jobID"] == job_id
 
 
 @pytest.mark.parametrize(
