@@ -28,10 +28,10 @@ from service.pages import (
     STATIC_PREFIX,
     Pages,
     actions,
-    job_pages,
     login,
     methods,
     queue_page,
+    workflow,
 )
 from service.pages import routes as v1_pages
 from service.problems import PROBLEM_TYPES, problem_response
@@ -201,7 +201,7 @@ def create_app(settings: Settings, *, registry: ProcessRegistry | None = None) -
     app.include_router(job_events.router)
     app.include_router(methods.router)
     app.include_router(actions.router)
-    app.include_router(job_pages.router)
+    app.include_router(workflow.router)
     app.include_router(queue_page.router)
     app.include_router(login.router)
     app.mount(STATIC_PREFIX, StaticFiles(directory=STATIC_DIR), name="pages-static")

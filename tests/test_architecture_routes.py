@@ -47,6 +47,10 @@ NOT_A_DOCUMENT: dict[tuple[str, str], str] = {
     ("POST", "/logout"): "a redirect",
     ("POST", "/pages/processes/{process_id}/run"): "a redirect or a page",
     ("POST", "/pages/jobs/{job_id}/dismiss"): "a redirect",
+    ("GET", "/pages/jobs/{job_id}/edit"): "a page (the process form, pre-filled)",
+    ("GET", "/pages/jobs/{job_id}/dismiss"): "a page asking to confirm, or a redirect",
+    ("GET", "/pages/compare"): "a page",
+    ("GET", "/queue"): "a page",
 }
 
 
