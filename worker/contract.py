@@ -134,3 +134,6 @@ class JobRecord:
     children_total: int | None = None
     children_done: int = 0
     children_failed: int = 0
+    #: The digest naming the computation (worker.provenance.result_key); None for a job
+    #: stored before result keys were.
+    result_key: str | None = None

@@ -33,6 +33,8 @@ from worker.idle import IdleWait
 from worker.logs import log_context
 from worker.processes import ProcessRegistry
 from worker.progress import StoreProgress
+from worker.provenance.build import provenance_block, result_key
+from worker.provenance.stamp import stamp_outcome
 from worker.result_commit import commit_outcome, error_document, record_failure
 from worker.settings import WorkerSettings
 from worker.store.base import Claim, JobStore, NewJob
@@ -292,7 +294,12 @@ class WorkerLoop:
         result = dict(outcome.result)
         result["notes"] = list(outcome.all_notes)
         result["paper_errata"] = list(outcome.errata)
-        return result, list(outcome.artifacts)
+        build = self.settings.build
+        key = job.result_key or result_key(job.process_id, job.inputs, definition.version, build)
+        provenance = provenance_block(
+            job.process_id, definition.version, build, self.settings.backend_name(), key
+        )
+        return stamp_outcome(result, outcome.artifacts, provenance)
 
 
 class _Backoff:
