@@ -24,7 +24,7 @@ from service.ogc.schemas import OGC_ROUTE_PROBLEMS, document_process_ids
 from service.ogc.vocabulary import is_ogc_path
 from service.openapi_streams import artifact_responses, event_stream_response
 from service.problems import PROBLEM_TYPES
-from service.schemas import RETENTION, ROUTE_DOCUMENTS, document_schemas
+from service.schemas import RETENTION, REUSE, ROUTE_DOCUMENTS, SHARE, document_schemas
 from worker.processes import ProcessRegistry
 
 __all__ = ["PROBLEM_SCHEMA", "install_openapi"]
@@ -91,6 +91,8 @@ class _RetentionMember(BaseModel):
     """The execute body's ``retention_s``, beside ``inputs``."""
 
     retention_s: float | None = RETENTION
+    reuse: bool = REUSE
+    share: bool = SHARE
 
 
 #: A page, as the routes that negotiate (``?f=html``, ``Accept: text/html``) answer.
@@ -167,7 +169,7 @@ def _process_bodies(
         ref_template="#/components/schemas/{model}",
     )
     document["components"]["schemas"].update(top.get("$defs", {}))
-    retention = _RetentionMember.model_json_schema()["properties"]["retention_s"]
+    members = _RetentionMember.model_json_schema()["properties"]
     for definition in definitions:
         path = document["paths"].get(f"/v1/processes/{definition.id}/execution")
         if path is None or "post" not in path:
@@ -189,7 +191,9 @@ def _process_bodies(
             "additionalProperties": False,
             "properties": {
                 "inputs": refs[(definition.inputs_model, "validation")],
-                "retention_s": retention,
+                "retention_s": members["retention_s"],
+                "reuse": members["reuse"],
+                "share": members["share"],
             },
         }
         content: dict[str, Any] = {"schema": schema}

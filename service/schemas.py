@@ -17,7 +17,9 @@ from pydantic.json_schema import models_json_schema
 __all__ = [
     "DOCUMENT_SCHEMAS",
     "RETENTION",
+    "REUSE",
     "ROUTE_DOCUMENTS",
+    "SHARE",
     "ProgressEvent",
     "document_schemas",
 ]
@@ -31,6 +33,22 @@ RETENTION: Any = Field(
     description="Keep the finished job and its results this many seconds (at most, and "
     "by default, the service's DEXLAB_RESULT_TTL_S); the status document's `expires` "
     "says until when.",
+)
+
+
+#: The execute body's ``reuse`` (beside ``inputs``, so input schemas and keys stay).
+REUSE: Any = Field(
+    True,
+    strict=True,
+    description="false: compute afresh, whatever result of the same inputs is stored "
+    "(`Cache-Control: no-cache` says the same); true: a stored result of the same result "
+    "key may answer the job at once (`reused_from` in its documents).",
+)
+#: The execute body's ``share``.
+SHARE: Any = Field(
+    True,
+    strict=True,
+    description="false: this job's result is never reused by another API key's job.",
 )
 
 

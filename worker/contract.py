@@ -137,3 +137,7 @@ class JobRecord:
     #: The digest naming the computation (worker.provenance.result_key); None for a job
     #: stored before result keys were.
     result_key: str | None = None
+    #: For a job answered by reuse: the job that computed its result (it may since
+    #: have been deleted), and whether that job was this job's owner's.
+    reused_from: str | None = None
+    reused_own: bool = False

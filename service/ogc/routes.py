@@ -11,7 +11,7 @@ from starlette.responses import Response
 
 from service.auth import IdentityDep
 from service.deps import DispatcherDep, RegistryDep, SettingsDep, StoreDep
-from service.execution import wait_while_connected
+from service.execution import no_cache, wait_while_connected
 from service.job_watcher import JobWatcher
 from service.ogc import pages as ogc_pages
 from service.ogc.execute_request import OgcExecuteRequest
@@ -225,6 +225,7 @@ async def execute(
         str | None, Header(alias="Idempotency-Key", min_length=1, max_length=255)
     ] = None,
     prefer: Annotated[str | None, Header(max_length=255)] = None,
+    cache_control: Annotated[str | None, Header(alias="Cache-Control", max_length=255)] = None,
 ) -> Response:
     """Create a job.  With no `Prefer`, a process that can run synchronously (its
     `sync-execute`, within its `sync_cost_limit`) answers with the results (waiting at
@@ -244,6 +245,7 @@ async def execute(
         not preferences.respond_async,
         urls.root,
         identity.name,
+        no_cache(cache_control),
     )
     mode = execution_mode(preferences, submitted.can_run_sync)
     job_id = submitted.job.job_id

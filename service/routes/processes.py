@@ -12,12 +12,12 @@ from starlette.concurrency import run_in_threadpool
 from service.auth import Identity, get_identity
 from service.deps import DispatcherDep, RegistryDep, SettingsDep, StoreDep
 from service.documents import job_href, status_document
-from service.execution import submit_job, wait_while_connected
+from service.execution import no_cache, submit_job, wait_while_connected
 from service.job_watcher import JobWatcher
 from service.pages import FormatQuery, PagesDep, views, wants_html
 from service.preferences import requested_wait
 from service.routes.jobs import finished_document
-from service.schemas import RETENTION
+from service.schemas import RETENTION, REUSE, SHARE
 from worker.contract import JobRecord
 from worker.errors import NoSuchJob
 from worker.store.base import JobStore
@@ -34,6 +34,8 @@ class ExecuteRequest(BaseModel):
 
     inputs: dict[str, Any] = Field(..., description="The process inputs (see its schema).")
     retention_s: float | None = RETENTION
+    reuse: bool = REUSE
+    share: bool = SHARE
 
 
 # The process list and descriptions need no store and take no threadpool thread for
@@ -122,6 +124,7 @@ async def execute(
         str | None, Header(alias="Idempotency-Key", min_length=1, max_length=255)
     ] = None,
     prefer: Annotated[str | None, Header(max_length=255)] = None,
+    cache_control: Annotated[str | None, Header(alias="Cache-Control", max_length=255)] = None,
 ) -> Any:
     """Queue a job.  With ``Prefer: wait=N`` and a request within the process's
     ``sync_cost_limit``, answer ``200`` with the result document if the job finishes
@@ -143,6 +146,8 @@ async def execute(
         wait is not None,
         identity.name,
         body.retention_s,
+        body.reuse and not no_cache(cache_control),
+        body.share,
     )
     response.headers["Location"] = job_href(job.job_id)
     if not created:
