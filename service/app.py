@@ -36,6 +36,7 @@ from service.routes import (
     methods,
     page_actions,
     processes,
+    reuse,
 )
 from service.routes.process_operations import (
     execution_router,
@@ -186,6 +187,7 @@ def create_app(settings: Settings, *, registry: ProcessRegistry | None = None) -
     app.include_router(execution_router(registry))
     app.include_router(processes.router)
     app.include_router(jobs.router)
+    app.include_router(reuse.router)
     app.include_router(health.router)
     app.include_router(landing.router)
     app.include_router(ogc_router())  # OGC API - Processes at /ogc/, same store and jobs

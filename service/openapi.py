@@ -84,6 +84,7 @@ ROUTE_PROBLEMS: dict[tuple[str, str], tuple[int, ...]] = {
     ("get", "/v1/jobs/{job_id}/results/{name}"): (404, 410, 422, 503, 507),
     ("get", "/methods"): (),
     ("get", "/methods/{slug}"): (404,),
+    ("delete", "/v1/reuse/{process_id}"): (403, 404, 422, 503),
 }
 
 

@@ -52,6 +52,15 @@ SHARE: Any = Field(
 )
 
 
+#: The status and results documents' ``reused_from``.
+REUSED_FROM: Any = Field(
+    None,
+    description="A job answered at once by a stored result of the same result key: the "
+    "ID of the job that computed it when that job was the caller's (or the caller is an "
+    "admin), else true; absent for a job that computed its own result.",
+)
+
+
 class _Document(BaseModel):
     model_config = ConfigDict(extra="forbid")
 
@@ -116,6 +125,7 @@ class StatusDocument(_Document):
     chunks: Chunks | None = Field(
         None, description="A study's chunk jobs: how many, how many ended, how many failed."
     )
+    reused_from: str | bool | None = REUSED_FROM
 
 
 class JobList(_Document):
@@ -156,6 +166,7 @@ class ResultsDocument(_Document):
 
     jobID: str
     processID: str
+    reused_from: str | bool | None = REUSED_FROM
     result: JobResult
     artifacts: list[ArtifactLink]
     links: list[Link]

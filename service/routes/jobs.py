@@ -115,7 +115,9 @@ def get_job(
 
 def _status(job: JobRecord, identity: Identity) -> dict[str, Any]:
     """The status document as this caller may see it (``worker_id``, ``owner``)."""
-    return status_document(job, worker=identity.sees_workers, owner=identity.sees_owners)
+    return status_document(
+        job, worker=identity.sees_workers, owner=identity.sees_owners, admin=identity.admin
+    )
 
 
 def _job_page(
@@ -147,13 +149,13 @@ def _finished(store: JobStore, job_id: str, owner: str | None = None) -> JobReco
     return job
 
 
-def finished_document(store: JobStore, job: JobRecord) -> dict[str, Any]:
+def finished_document(store: JobStore, job: JobRecord, admin: bool = False) -> dict[str, Any]:
     """The result document of a finished job, or the problem that says why there is none."""
     job = _finished(store, job.job_id)
     result = store.get_result(job.job_id)
     if result is None:  # dismissed between the two reads
         raise JobDismissed(f"Job {job.job_id} was dismissed; it has no results.")
-    return results_document(job, result)
+    return results_document(job, result, admin=admin)
 
 
 @router.get(
@@ -175,7 +177,7 @@ def get_results(
     response.headers["Vary"] = "Accept"
     if wants_html(request):  # the job's page shows its results (or why there are none)
         return _job_page(request, store, registry, pages, job)
-    return finished_document(store, job)
+    return finished_document(store, job, identity.admin)
 
 
 #: The artifact's validator; over-long values are 422 before anything is looked up.

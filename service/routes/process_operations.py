@@ -72,10 +72,11 @@ def _bound(process_id: str) -> Callable[..., Awaitable[Any]]:
             str | None, Header(alias="Idempotency-Key", min_length=1, max_length=255)
         ] = None,
         prefer: Annotated[str | None, Header(max_length=255)] = None,
+        cache_control: Annotated[str | None, Header(alias="Cache-Control", max_length=255)] = None,
     ) -> Any:
         return await execute(
             process_id, body, request, response, store, registry, settings, dispatcher,
-            idempotency_key, prefer,
+            idempotency_key, prefer, cache_control,
         )  # fmt: skip
 
     return run_process

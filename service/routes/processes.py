@@ -155,7 +155,9 @@ async def execute(
     if wait is not None and synchronous:
         watcher: JobWatcher = request.app.state.watcher
         if await wait_while_connected(request, watcher, job.job_id, wait):
-            document = await run_in_threadpool(_finished_document, store, job.job_id)
+            document = await run_in_threadpool(
+                _finished_document, store, job.job_id, identity.admin
+            )
             headers = {
                 "Location": response.headers["Location"],
                 "Preference-Applied": f"wait={wait:g}",
@@ -165,11 +167,13 @@ async def execute(
 
 
 def _status(job: JobRecord, identity: Identity) -> dict[str, Any]:
-    return status_document(job, worker=identity.sees_workers, owner=identity.sees_owners)
+    return status_document(
+        job, worker=identity.sees_workers, owner=identity.sees_owners, admin=identity.admin
+    )
 
 
-def _finished_document(store: JobStore, job_id: str) -> dict[str, Any]:
+def _finished_document(store: JobStore, job_id: str, admin: bool = False) -> dict[str, Any]:
     job = store.get_job(job_id)
     if job is None:  # pragma: no cover - jobs are only deleted by retention, later
         raise NoSuchJob(f"No job {job_id!r}.")
-    return finished_document(store, job)
+    return finished_document(store, job, admin)

@@ -45,8 +45,10 @@ class Reuse(SqlConnector):
             "SELECT job_id, owner, result, reused_from, reused_own FROM jobs "
             "WHERE result_key = ? AND process_id = ? AND status = ? AND reusable = 1 "
             f"AND children_failed = 0 AND (expires IS NULL OR expires > ?) AND {shared} "
-            "ORDER BY seq DESC LIMIT 1",
-            (new.result_key, new.process_id, _SUCCESSFUL, now, new.owner),
+            # the owner's own first, then a computing job over a reuse of it
+            "ORDER BY CASE WHEN owner = ? THEN 0 ELSE 1 END, "
+            "CASE WHEN reused_from IS NULL THEN 0 ELSE 1 END, seq DESC LIMIT 1",
+            (new.result_key, new.process_id, _SUCCESSFUL, now, new.owner, new.owner),
         )
 
     def _insert_reused(self, conn: Conn, new: NewJob, job_id: str, source: Row, now: float) -> None:
