@@ -173,6 +173,13 @@ class Client:
         job = self.submit(process_id, inputs, example=example)
         return job.wait(timeout, progress=progress)
 
+    def invalidate_reuse(self, process_id: str, key: str | None = None) -> dict[str, Any]:
+        """Stop the stored results of ``process_id`` (of result key ``key`` only, when
+        given) from answering new jobs, deleting none (an admin key's right):
+        ``{"processID", "result_key", "invalidated"}``."""
+        params = {} if key is None else {"key": key}
+        return dict(self.document("DELETE", api_path("reuse", process_id), params=params))
+
     def job(self, job_id: str) -> Job:
         """The job with this ID (its status read now)."""
         return Job(self, JobStatus.from_document(self.document("GET", api_path("jobs", job_id))))
