@@ -141,3 +141,7 @@ class JobRecord:
     #: have been deleted), and whether that job was this job's owner's.
     reused_from: str | None = None
     reused_own: bool = False
+    #: The reuse its submission asked for ('owner', 'all'; None: none), and whether
+    #: other owners may reuse its result (a study's chunks inherit both).
+    reuse_scope: str | None = None
+    shareable: bool = True

@@ -64,14 +64,15 @@ class Reuse(SqlConnector):
             """INSERT INTO jobs (job_id, process_id, status, inputs, created, updated,
                    started, finished, progress, max_attempts, time_limit_s, idempotency,
                    request_hash, message, owner, cheap, retention_s, expires, parent_id,
-                   result, result_key, shareable, reused_from, reused_own)
-               VALUES (?, ?, ?, ?, ?, ?, ?, ?, 100, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)""",
+                   result, result_key, shareable, reused_from, reused_own, reuse_scope)
+               VALUES (?, ?, ?, ?, ?, ?, ?, ?, 100, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?,
+                       ?, ?, ?)""",
             (
                 job_id, new.process_id, _SUCCESSFUL, json.dumps(dict(new.inputs)), now, now,
                 now, now, new.max_attempts, new.time_limit_s, new.idempotency_key,
                 new.request_hash, "reused a stored result", new.owner, 1 if new.cheap else 0,
                 new.retention_s, now + new.retention_s, new.parent_id, source["result"],
-                new.result_key, 1 if new.share else 0, root, 1 if own else 0,
+                new.result_key, 1 if new.share else 0, root, 1 if own else 0, new.reuse,
             ),
         )  # fmt: skip
         self._exec(

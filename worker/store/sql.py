@@ -152,6 +152,8 @@ class SqlJobStore(
             result_key=row["result_key"],
             reused_from=row["reused_from"],
             reused_own=bool(row["reused_own"]),
+            reuse_scope=row["reuse_scope"],
+            shareable=bool(row["shareable"]),
         )
 
     def create_job(self, new: NewJob) -> tuple[JobRecord, bool]:
@@ -181,8 +183,8 @@ class SqlJobStore(
                 conn,
                 """INSERT INTO jobs (job_id, process_id, status, inputs, created, updated,
                        max_attempts, time_limit_s, idempotency, request_hash, message, owner,
-                       cheap, retention_s, parent_id, result_key, shareable)
-                   VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)
+                       cheap, retention_s, parent_id, result_key, shareable, reuse_scope)
+                   VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)
                    ON CONFLICT DO NOTHING""",
                 (
                     job_id,
@@ -202,6 +204,7 @@ class SqlJobStore(
                     new.parent_id,
                     new.result_key,
                     1 if new.share else 0,
+                    new.reuse,
                 ),
             )
             if inserted.rowcount == 1:

@@ -46,9 +46,10 @@ class Service:
         self.app, self.client = app, client
         self.loop = WorkerLoop(WorkerSettings(workers=1), app.state.store, registry)
 
-    def drain(self) -> int:
+    def drain(self, limit: int = 1000) -> int:
+        """Run queued jobs (at most ``limit``) until none is left; how many ran."""
         store, ran = self.app.state.store, 0
-        while (claim := store.claim_next(self.loop.worker_id, 30)) is not None:
+        while ran < limit and (claim := store.claim_next(self.loop.worker_id, 30)) is not None:
             self.loop.execute(claim)
             ran += 1
         return ran
@@ -188,3 +189,41 @@ async def test_an_admin_invalidates_without_deleting_jobs(tmp_path: Path) -> Non
         assert done.status_code == 200 and done.json()["invalidated"] == 1
         assert (await s.submit(ALICE)).json()["status"] == "accepted"
         assert (await s.results(ALICE, first["jobID"]))["result"]  # the job stays
+
+
+STUDY: dict[str, Any] = {
+    "process": "planar3r-dexterity-map",
+    "fixed": {"links": [15, 14, 8], "joint_limits_deg": [[-150, 150], [-150, 150], [-175, 175]],
+              "task_points": [[14, 14], [12, 8], [8, -8]], "grid": {"points_per_axis": 5}},
+    "vary": {"links[0]": [10, 20, 5], "links[1]": [8, 18, 4]},
+    "objectives": {"task_points[].d_z|min": "max", "links|sum": "min"},
+    "engine": "per-design", "chunk_size": 3, "plots": False,
+}  # fmt: skip
+
+
+async def test_a_study_run_again_reuses_its_stored_chunks(tmp_path: Path) -> None:
+    """A study dismissed before its assembly (a crash, a change of mind) leaves its
+    chunks stored: running it again computes none of them; with reuse false it computes
+    every one; both assemble to the same result_hash."""
+    async with service(tmp_path, "owner") as s:
+        url = "/v1/processes/design-study/execution"
+        first = (await s.client.post(url, json={"inputs": STUDY}, headers=key(ALICE))).json()
+        assert s.drain(limit=1) == 1  # the split
+        status = await s.client.get(f"/v1/jobs/{first['jobID']}", headers=key(ALICE))
+        chunks = status.json()["chunks"]["total"]
+        assert chunks > 1 and s.drain(limit=chunks) == chunks  # each chunk, not the assembly
+        await s.client.delete(f"/v1/jobs/{first['jobID']}", headers=key(ALICE))
+        again = (await s.client.post(url, json={"inputs": STUDY}, headers=key(ALICE))).json()
+        assert again["status"] == "accepted" and "reused_from" not in again
+        assert s.drain() == 2  # the split and the assembly: every chunk reused
+        done = (await s.client.get(f"/v1/jobs/{again['jobID']}", headers=key(ALICE))).json()
+        assert done["status"] == "successful"
+        assert done["chunks"] == {"total": chunks, "ended": chunks, "failed": 0}
+        fresh = await s.client.post(url, json={"inputs": STUDY, "reuse": False},
+                                    headers=key(ALICE))  # fmt: skip
+        assert fresh.json()["status"] == "accepted"
+        assert s.drain() == chunks + 2  # a fresh study computes its chunks
+        one = await s.results(ALICE, again["jobID"])
+        other = await s.results(ALICE, fresh.json()["jobID"])
+        assert one["result"]["result_hash"] == other["result"]["result_hash"]
+        assert one["result"]["feasible"] == other["result"]["feasible"]
