@@ -275,7 +275,11 @@ def job_page(
             downloads=[
                 {**a, "download": a["media_type"] in _DOWNLOADS} for a in results["artifacts"]
             ],
-            provenance={k: result[k] for k in PROVENANCE_KEYS if k in result} or None,
+            provenance={
+                **({"reused_from": document["reused_from"]} if "reused_from" in document else {}),
+                **{k: result[k] for k in PROVENANCE_KEYS if k in result},
+            }
+            or None,
         )
     context.update(extra or {})
     return pages.render(request, template, context)
