@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import io
 import json
+import zipfile
 from collections.abc import Mapping, Sequence
 from typing import Any
 
@@ -23,6 +24,21 @@ __all__ = ["NPZ_DESCRIPTION_ENTRIES", "NPZ_MEDIA_TYPE", "stamp_outcome"]
 NPZ_MEDIA_TYPE = "application/x-npz"
 #: The NPZ entries that describe the others (JSON strings).
 NPZ_DESCRIPTION_ENTRIES = ("axes", "units", "metadata")
+#: The time every member of a stamped NPZ file carries: none of the job's own.
+_ZIP_EPOCH = (1980, 1, 1, 0, 0, 0)
+
+
+def _npz_bytes(entries: Mapping[str, Any]) -> bytes:
+    """A compressed NPZ of ``entries``, byte for byte the same for the same arrays (the
+    zip members carry no time; ``numpy.savez_compressed`` stamps the current one)."""
+    buffer = io.BytesIO()
+    with zipfile.ZipFile(buffer, "w", compression=zipfile.ZIP_DEFLATED) as archive:
+        for name, value in entries.items():
+            info = zipfile.ZipInfo(f"{name}.npy", date_time=_ZIP_EPOCH)
+            info.compress_type = zipfile.ZIP_DEFLATED
+            with archive.open(info, "w", force_zip64=True) as member:
+                np.lib.format.write_array(member, np.asanyarray(value), allow_pickle=False)
+    return buffer.getvalue()
 
 
 def _with_metadata(artifact: Artifact, stamp: Mapping[str, Any]) -> Artifact:
@@ -35,9 +51,7 @@ def _with_metadata(artifact: Artifact, stamp: Mapping[str, Any]) -> Artifact:
     metadata = json.loads(str(entries["metadata"]))
     metadata.update(stamp)
     entries["metadata"] = np.array(json.dumps(metadata, allow_nan=False))
-    buffer = io.BytesIO()
-    np.savez_compressed(buffer, allow_pickle=False, **entries)
-    return Artifact(artifact.name, artifact.media_type, buffer.getvalue(), artifact.title)
+    return Artifact(artifact.name, artifact.media_type, _npz_bytes(entries), artifact.title)
 
 
 def stamp_outcome(

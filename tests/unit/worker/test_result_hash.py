@@ -6,6 +6,7 @@ from __future__ import annotations
 import io
 import json
 import math
+import zipfile
 from typing import Any
 
 import numpy as np
@@ -146,3 +147,7 @@ def test_a_stamped_outcome_carries_provenance_in_the_result_and_the_npz() -> Non
         assert metadata == {"process": "p", "provenance": provenance,
                             "result_hash": result["result_hash"]}  # fmt: skip
         assert np.array_equal(archive["x"], np.ones(3))
+    again = Artifact("m.npz", NPZ_MEDIA_TYPE, _npz({"x": np.ones(3)}, {"process": "p"}))
+    assert stamp_outcome({"v": 1.0}, [again], provenance)[1][0].data == artifacts[0].data
+    with zipfile.ZipFile(io.BytesIO(artifacts[0].data)) as archive:  # no time of the job's
+        assert {info.date_time for info in archive.infolist()} == {(1980, 1, 1, 0, 0, 0)}
