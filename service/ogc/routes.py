@@ -253,7 +253,10 @@ async def execute(
     if not submitted.created:
         headers["Idempotent-Replayed"] = "true"
     watcher: JobWatcher = request.app.state.watcher
-    if mode.synchronous and await wait_while_connected(request, watcher, job_id, mode.wait_s):
+    reused = submitted.job.reused_from is not None  # finished already: no wait at all
+    if mode.synchronous and (
+        reused or await wait_while_connected(request, watcher, job_id, mode.wait_s)
+    ):
         headers["Link"] = f'<{urls.job(job_id)}>; rel="monitor"; type="{JSON}"'
         if mode.applied_if_sync:
             headers["Preference-Applied"] = mode.applied_if_sync

@@ -154,7 +154,10 @@ async def execute(
         response.headers["Idempotent-Replayed"] = "true"
     if wait is not None and synchronous:
         watcher: JobWatcher = request.app.state.watcher
-        if await wait_while_connected(request, watcher, job.job_id, wait):
+        # a job answered by a stored result is finished already: no wait at all
+        if job.reused_from is not None or await wait_while_connected(
+            request, watcher, job.job_id, wait
+        ):
             document = await run_in_threadpool(
                 _finished_document, store, job.job_id, identity.admin
             )
