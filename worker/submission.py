@@ -126,10 +126,6 @@ def submit_request(
             cost_limit=definition.cost_limit,
             cost_unit=definition.cost_unit,
         )
-    if definition.precheck is not None:
-        problems = definition.precheck(inputs)
-        if problems:
-            raise InvalidInputs(problems)
     stored_inputs = inputs.model_dump(mode="json")
     cheap = definition.sync_cost_limit > 0 and cost <= definition.sync_cost_limit
     new = NewJob(
@@ -147,6 +143,12 @@ def submit_request(
         reuse=settings.reuse if reuse and settings.reuse != "off" else None,
         share=share,
     )
+    # A stored result of this key means these inputs passed the precheck once already
+    # (a design study's checks its designs: ~100 ms a reused answer need not pay).
+    if definition.precheck is not None and not (new.reuse and store.reusable(new)):
+        problems = definition.precheck(inputs)
+        if problems:
+            raise InvalidInputs(problems)
     job, created = store.create_job(new)
     if created and dispatcher is not None and job.status is JobStatus.ACCEPTED:
         dispatcher.dispatch(job.job_id, job.time_limit_s)

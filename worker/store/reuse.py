@@ -18,6 +18,7 @@ from __future__ import annotations
 
 import json
 import logging
+import time
 from collections.abc import Iterable
 
 from worker.contract import JobStatus
@@ -84,6 +85,13 @@ class Reuse(SqlConnector):
         )
         self._tally(conn, new.process_id, "submitted")
         self._tally(conn, new.process_id, "reused")
+
+    @retrying
+    def reusable(self, new: NewJob) -> bool:
+        """Whether a stored result would answer ``new`` now (its inputs then passed
+        every check once already: the same key is the same inputs, process version
+        and build)."""
+        return self._reuse_source(self._conn(), new, time.time()) is not None
 
     @retrying
     def invalidate_reuse(self, process_id: str, result_key: str | None = None) -> int:

@@ -38,7 +38,10 @@ def computed(store: JobStore, job: NewJob) -> str:
 
 
 def test_a_stored_result_answers_a_new_job_at_once(store: JobStore) -> None:
+    assert not store.reusable(new())
     first = computed(store, new())
+    assert store.reusable(new()) and not store.reusable(new(reuse=None))
+    assert not store.reusable(new(owner="bob")) and store.reusable(new(owner="bob", reuse="all"))
     second, created = store.create_job(new())
     assert created and second.job_id != first and second.status is JobStatus.SUCCESSFUL
     assert second.reused_from == first and second.reused_own and second.expires is not None
