@@ -97,7 +97,7 @@ def create_app(settings: Settings, *, registry: ProcessRegistry | None = None) -
     async def lifespan(app: FastAPI) -> AsyncIterator[None]:
         store = open_store(settings.resolved_store_url(), retry_s=settings.store_retry_seconds)
         app.state.auth = start_auth(settings, store)  # keys, sessions (service.auth)
-        dispatcher = make_dispatcher(settings, store)
+        dispatcher = make_dispatcher(settings, store, registry)
         # With a broker, this process serves the API only; Celery workers run the jobs
         # and a sweeper here re-sends jobs whose worker died.
         pool = (

@@ -18,6 +18,7 @@ from kombu import Connection, Queue
 
 from tests.integration.servers import backend_env, deployment, wait_terminal
 from worker.dispatch.celery.dispatch import CeleryDispatch
+from worker.registry import default_registry
 from worker.settings import WorkerSettings
 from worker.store import open_store
 from worker.store.base import NewJob
@@ -87,7 +88,7 @@ def test_the_dispatcher_counts_waiting_messages_on_one_kept_connection(
         )
         store = open_store(settings.resolved_store_url())
         stack.callback(store.close)
-        dispatcher = CeleryDispatch(settings, store)
+        dispatcher = CeleryDispatch(settings, store, default_registry())
         stack.callback(dispatcher.close)
         for _ in range(3):
             job, _ = store.create_job(NewJob("fourbar-grashof", {}, 30, 3))
@@ -99,7 +100,9 @@ def test_the_dispatcher_counts_waiting_messages_on_one_kept_connection(
         assert dispatcher._kept is kept  # one connection, a channel per count
         # A queue the broker does not have: None (the sweeper then re-sends as before),
         # and the next count opens a new connection.
-        other = CeleryDispatch(settings.model_copy(update={"queue": "dexlab-no-such"}), store)
+        other = CeleryDispatch(
+            settings.model_copy(update={"queue": "dexlab-no-such"}), store, default_registry()
+        )
         stack.callback(other.close)
         assert other.waiting_messages() is None and other._kept is None
         assert dispatcher.waiting_messages() == 3

@@ -11,27 +11,13 @@ The store stays the source of truth either way; the broker only delivers job IDs
 
 from __future__ import annotations
 
-from typing import Protocol
-
+from worker.dispatch.port import Dispatcher
 from worker.dispatch.wake_ups import WakeUpSender, wake_up_dir
+from worker.processes import ProcessRegistry
 from worker.settings import WorkerSettings
 from worker.store.base import JobStore
 
 __all__ = ["Dispatcher", "LocalDispatch", "make_dispatcher"]
-
-
-class Dispatcher(Protocol):
-    """Hands committed jobs to the workers."""
-
-    def dispatch(self, job_id: str, time_limit_s: float) -> None:
-        """Make the job reach a worker; never raises for a broker outage (the job is
-        committed, and the sweeper sends it again)."""
-
-    def waiting_messages(self) -> int | None:
-        """Messages waiting in the broker for a worker to take them, or None when
-        there is no broker or it cannot say."""
-
-    def close(self) -> None: ...
 
 
 class LocalDispatch:
@@ -51,11 +37,14 @@ class LocalDispatch:
         self.sender.close()
 
 
-def make_dispatcher(settings: WorkerSettings, store: JobStore) -> Dispatcher:
-    """The dispatcher the settings call for."""
+def make_dispatcher(
+    settings: WorkerSettings, store: JobStore, registry: ProcessRegistry
+) -> Dispatcher:
+    """The dispatcher the settings call for (``registry``: the processes whose jobs it
+    sends, for the longest time limit a Celery message must allow)."""
     if not settings.broker_url:
         return LocalDispatch(WakeUpSender(wake_up_dir(settings.resolved_store_url())))
     # optional: Celery is loaded only with a broker
     from worker.dispatch.celery.dispatch import CeleryDispatch
 
-    return CeleryDispatch(settings, store)
+    return CeleryDispatch(settings, store, registry)

@@ -32,6 +32,7 @@ __all__ = [
     "chunk_size",
     "design_seconds",
     "per_design_seconds",
+    "probe_costs",
     "probe_indices",
 ]
 
@@ -64,22 +65,29 @@ def probe_indices(count: int, most: int = PRICED_PROBES) -> list[int]:
     return list(dict.fromkeys([0, count // 2, *spread]))
 
 
-def per_design_seconds(spec: StudySpec, process: ProcessDefinition) -> float:
-    """A per-design study's seconds per design by the cost model: a job of ``process``
-    on the first accepted design among :func:`probe_indices` (just the fixed cost of a
-    job when every one tried is refused), plus the study's validation."""
+def probe_costs(spec: StudySpec, process: ProcessDefinition) -> list[float]:
+    """The cost of a job of ``process`` (figures off, as a chunk runs it) on each design
+    of :func:`probe_indices` the process accepts, in that order ([] when it refuses
+    every one tried)."""
+    costs: list[float] = []
     for index in probe_indices(spec.designs.count):
         design = tuple(float(v) for v in spec.designs.block(index, index + 1)[0])
         raw = design_inputs(spec, design)
         if "plots" in process.inputs_model.model_fields:
             raw["plots"] = False
         try:
-            cost = float(process.cost(validate_inputs(process, raw)))
+            costs.append(float(process.cost(validate_inputs(process, raw))))
         except (InvalidInputs, ValueError):
             continue
-        break
-    else:
-        cost = 0.0
+    return costs
+
+
+def per_design_seconds(spec: StudySpec, process: ProcessDefinition) -> float:
+    """A per-design study's seconds per design by the cost model: a job of ``process``
+    on the first accepted design among :func:`probe_indices` (just the fixed cost of a
+    job when every one tried is refused), plus the study's validation."""
+    costs = probe_costs(spec, process)
+    cost = costs[0] if costs else 0.0
     return process.seconds_per_run + cost * process.seconds_per_cost + VALIDATION_SECONDS_PER_DESIGN
 
 

@@ -35,7 +35,7 @@ from worker.processes import (
 )
 from worker.result_paths import declared_steps
 from worker.studies.chunk import ChunkSpec, run_chunk, target_of
-from worker.studies.chunking import chunk_inputs, probe_indices
+from worker.studies.chunking import chunk_inputs, probe_costs, probe_indices
 from worker.studies.engine import EngineChoice, choose_engine
 from worker.studies.evaluation import SilentContext, design_inputs
 from worker.studies.examples import STUDY_EXAMPLES
@@ -62,16 +62,15 @@ Answer = TypeVar("Answer")
 def study_cost(spec: StudySpec, process: ProcessDefinition) -> int:
     """Designs x a design's cost, in millionths of the cost limit of ``process`` (the
     process studied): the kernel's cost of a design when the study is batched, else the
-    first design's cost as a job of the process."""
+    dearest of the designs spread over the space that the process accepts
+    (:func:`~.chunking.probe_costs`; a design's cost may grow with its varied values),
+    as a job of the process; 1 unit when it refuses every one tried (refused designs
+    cost next to nothing)."""
     choice = choose_engine(spec, process)
     if choice.plan is not None:
         share = min(1.0, choice.plan.cost / process.cost_limit)
         return math.ceil(spec.designs.count * share * _MILLIONTHS)
-    first = tuple(float(v) for v in spec.designs.block(0, 1)[0])
-    try:
-        design_cost = int(process.cost(validate_inputs(process, design_inputs(spec, first))))
-    except (InvalidInputs, ValueError):
-        design_cost = 1  # refused designs cost next to nothing
+    design_cost = max(probe_costs(spec, process), default=1.0)
     share = min(1.0, design_cost / process.cost_limit)
     return math.ceil(spec.designs.count * share * _MILLIONTHS)
 

@@ -10,6 +10,7 @@ job claimed or finished and does nothing.
 from __future__ import annotations
 
 import logging
+from collections.abc import Callable
 
 from celery import Celery, Task
 
@@ -21,9 +22,15 @@ log = logging.getLogger("dexlab.celery")
 
 RUN_JOB = "dexlab.run_job"
 
+#: What a delivery of ``dexlab.run_job`` does: run the job named by the message (or
+#: another in fair order); seconds to retry the message after, or None.
+DeliveryRunner = Callable[[Celery, str], "float | None"]
 
-def create_celery_app(settings: WorkerSettings) -> Celery:
-    """A Celery app for these settings, with the ``dexlab.run_job`` task registered."""
+
+def create_celery_app(settings: WorkerSettings, runner: DeliveryRunner | None = None) -> Celery:
+    """A Celery app for these settings.  A worker's app gets the ``dexlab.run_job``
+    task, which hands each delivery to ``runner``; a sender's (``runner`` None) sends
+    the task by name and needs none, so this module imports no worker code."""
     app = Celery("dexlab", broker=settings.broker_url, set_as_current=False)
     app.conf.update(
         task_serializer="json",
@@ -43,17 +50,17 @@ def create_celery_app(settings: WorkerSettings) -> Celery:
         task_send_sent_event=False,
     )
     app.dexlab_settings = settings
+    if runner is not None:
+        _register_run_job(app, runner)
+    return app
 
+
+def _register_run_job(app: Celery, runner: DeliveryRunner) -> None:
     # shared=False: the task belongs to this app only (a shared task would be added to
     # every app created later in the process, twice over in `dexlab worker`, which
     # makes one app for the worker and one for sending).
     @app.task(name=RUN_JOB, bind=True, max_retries=None, shared=False)  # type: ignore[untyped-decorator]
     def run_job(self: Task, job_id: str) -> None:
-        # optional: the task runs in a Celery worker only, whose module imports this one
-        from worker.dispatch.celery.worker import run_delivered_job
-
-        retry_after = run_delivered_job(self.app, job_id)
+        retry_after = runner(self.app, job_id)
         if retry_after is not None:
             raise self.retry(countdown=retry_after)
-
-    return app

@@ -15,9 +15,9 @@ import threading
 from contextlib import suppress
 from typing import Any
 
-from worker.dispatch import Dispatcher
 from worker.dispatch.celery.app import RUN_JOB, create_celery_app
-from worker.registry import default_registry
+from worker.dispatch.port import Dispatcher
+from worker.processes import ProcessRegistry
 from worker.settings import WorkerSettings
 from worker.store.base import JobStore
 
@@ -32,11 +32,13 @@ HARD_LIMIT_GRACE_S = 60.0
 class CeleryDispatch:
     """Sends ``dexlab.run_job(job_id)`` with the job ID as the task ID."""
 
-    def __init__(self, settings: WorkerSettings, store: JobStore) -> None:
+    def __init__(
+        self, settings: WorkerSettings, store: JobStore, registry: ProcessRegistry
+    ) -> None:
         self.settings = settings
         self.store = store
         self.app = create_celery_app(settings)
-        self._longest_s = longest_time_limit(settings)
+        self._longest_s = longest_time_limit(settings, registry)
         self._kept: Any = None  # the broker connection kept for counting and taking
 
     def dispatch(self, job_id: str, time_limit_s: float) -> None:
@@ -106,10 +108,9 @@ class CeleryDispatch:
         self.app.close()
 
 
-def longest_time_limit(settings: WorkerSettings) -> float:
-    """The longest time limit any job of the registered processes gets (seconds)."""
-    return max((settings.time_limit_for(d.time_limit_s) for d in default_registry()),
-               default=0.0)  # fmt: skip
+def longest_time_limit(settings: WorkerSettings, registry: ProcessRegistry) -> float:
+    """The longest time limit any job of ``registry``'s processes gets (seconds)."""
+    return max((settings.time_limit_for(d.time_limit_s) for d in registry), default=0.0)
 
 
 def hard_time_limit(settings: WorkerSettings, time_limit_s: float) -> float:

@@ -69,6 +69,7 @@ from worker.errors import StoreUnavailable
 from worker.liveness import LivenessBoard, Watchdog, frozen_after_s
 from worker.logs import log_context, stdout_as_log_lines
 from worker.pool_process import lower_priority
+from worker.processes import ProcessRegistry
 from worker.registry import preload_job_modules, worker_registry
 from worker.retention import RetentionSweeper
 from worker.runner import WorkerLoop, worker_id_for
@@ -96,16 +97,17 @@ def _runtime_for_this_process(app: Celery) -> _ProcessRuntime:
         store = open_store(settings.resolved_store_url(), retry_s=settings.store_retry_seconds)
         # The pool's first process prefers cheap jobs (its index is kept when replaced).
         cheap = current_process_index(base=0) == 0
-        sender = _Sender(settings, store)
+        registry = worker_registry()
+        sender = _Sender(settings, store, registry)
         loop = WorkerLoop(
             settings,
             store,
-            worker_registry(),
+            registry,
             prefer_cheap=cheap,
             on_queued=sender.send,
             commit_behind=True,
         )
-        runtime = _ProcessRuntime(os.getpid(), loop, sender, delivery_batch_s(settings))
+        runtime = _ProcessRuntime(os.getpid(), loop, sender, delivery_batch_s(settings, registry))
         app.dexlab_runtime = runtime
     return runtime
 
@@ -116,12 +118,12 @@ def run_delivered_job(app: Celery, job_id: str) -> float | None:
         return _run_delivered_job(app, job_id)
 
 
-def delivery_batch_s(settings: WorkerSettings) -> float:
+def delivery_batch_s(settings: WorkerSettings, registry: ProcessRegistry) -> float:
     """How long a delivery may go on running further jobs: ``delivery_batch_s``, but
     at most half the slack between a message's hard time limit and the longest job (a
     job started late in a delivery must still end inside its message's limit, and so
     inside the broker's redelivery window)."""
-    longest = longest_time_limit(settings)
+    longest = longest_time_limit(settings, registry)
     slack = hard_time_limit(settings, longest) - longest
     return max(0.0, min(settings.delivery_batch_s, slack / 2))
 
@@ -131,8 +133,8 @@ class _Sender:
     one message each, as for a submission; and takes waiting messages off the queue
     for a delivery's further jobs (broker connections made on first use)."""
 
-    def __init__(self, settings: WorkerSettings, store: Any) -> None:
-        self._dispatch = CeleryDispatch(settings, store)
+    def __init__(self, settings: WorkerSettings, store: Any, registry: ProcessRegistry) -> None:
+        self._dispatch = CeleryDispatch(settings, store, registry)
         self._taker: ThreadPoolExecutor | None = None
 
     def send(self, job_ids: Any) -> None:
@@ -263,11 +265,11 @@ def run_celery_worker(
     modules = preload_job_modules()
     log.info("loaded %d job modules in %.2f s", len(modules), time.monotonic() - started)
     store = open_store(settings.resolved_store_url(), retry_s=settings.store_retry_seconds)
-    app = create_celery_app(settings)
+    app = create_celery_app(settings, run_delivered_job)
     signals.worker_process_shutdown.connect(
         lambda **_: _settle_at_exit(app), weak=False, dispatch_uid="dexlab-settle"
     )
-    dispatcher = CeleryDispatch(settings, store)
+    dispatcher = CeleryDispatch(settings, store, worker_registry())
     worker_id = worker_id_for(os.getpid())
     store.register_worker(worker_id, socket.gethostname(), os.getpid())
     sweeper = Sweeper(settings, store, dispatcher, worker_id=worker_id)

@@ -7,6 +7,7 @@ from pathlib import Path
 
 from worker.dispatch import LocalDispatch, make_dispatcher
 from worker.dispatch.celery.dispatch import CeleryDispatch, Sweeper
+from worker.registry import worker_registry
 from worker.settings import WorkerSettings
 from worker.store import open_store
 from worker.store.base import NewJob
@@ -29,7 +30,7 @@ class RecordingDispatch:
 
 def test_no_broker_means_the_local_pool(tmp_path: Path) -> None:
     store = open_store(f"sqlite:///{tmp_path / 'j.db'}")
-    dispatcher = make_dispatcher(WorkerSettings(), store)
+    dispatcher = make_dispatcher(WorkerSettings(), store, worker_registry())
     assert isinstance(dispatcher, LocalDispatch)
     dispatcher.close()
 
@@ -37,7 +38,7 @@ def test_no_broker_means_the_local_pool(tmp_path: Path) -> None:
 def test_broker_url_means_celery_without_connecting(tmp_path: Path) -> None:
     store = open_store(f"sqlite:///{tmp_path / 'j.db'}")
     settings = WorkerSettings(broker_url="redis://127.0.0.1:1/0")
-    dispatcher = make_dispatcher(settings, store)
+    dispatcher = make_dispatcher(settings, store, worker_registry())
     assert isinstance(dispatcher, CeleryDispatch)
     conf = dispatcher.app.conf
     assert conf.task_acks_late and conf.task_reject_on_worker_lost
@@ -148,14 +149,17 @@ def test_each_celery_app_has_its_own_task_and_no_duplicate_warning() -> None:
     import warnings
 
     from worker.dispatch.celery.app import RUN_JOB, create_celery_app
+    from worker.dispatch.celery.worker import run_delivered_job
 
     settings = WorkerSettings(broker_url="redis://127.0.0.1:1/0")
     with warnings.catch_warnings():
         warnings.simplefilter("error")
-        apps = [create_celery_app(settings) for _ in range(3)]
+        apps = [create_celery_app(settings, run_delivered_job) for _ in range(3)]
         tasks = [app.tasks[RUN_JOB] for app in apps]
+        sender = create_celery_app(settings)
     assert len({id(task) for task in tasks}) == 3
     assert all(task.app is app for task, app in zip(tasks, apps, strict=True))
+    assert RUN_JOB not in sender.tasks  # a sender sends by name
 
 
 def test_a_delivery_runs_further_jobs_only_inside_its_messages_time_limit() -> None:
@@ -165,8 +169,9 @@ def test_a_delivery_runs_further_jobs_only_inside_its_messages_time_limit() -> N
     from worker.dispatch.celery.worker import delivery_batch_s
 
     redis = "redis://127.0.0.1:6379/0"
-    assert delivery_batch_s(WorkerSettings(broker_url=redis)) == 0.05
-    assert delivery_batch_s(WorkerSettings(broker_url=redis, delivery_batch_s=0)) == 0
+    registry = worker_registry()
+    assert delivery_batch_s(WorkerSettings(broker_url=redis), registry) == 0.05
+    assert delivery_batch_s(WorkerSettings(broker_url=redis, delivery_batch_s=0), registry) == 0
     tight = WorkerSettings(broker_url=redis, broker_visibility_timeout_s=1.0)
     # Jobs capped at 0.9 s, messages' hard limit 0.95 s: 0.05 s of slack, half of it.
-    assert abs(delivery_batch_s(tight) - 0.025) < 1e-9
+    assert abs(delivery_batch_s(tight, registry) - 0.025) < 1e-9

@@ -23,6 +23,7 @@ from worker.dispatch.wake_ups import (
     WakeUpSender,
     wake_up_dir,
 )
+from worker.registry import default_registry
 from worker.settings import WorkerSettings
 from worker.store import open_store
 
@@ -181,7 +182,7 @@ def test_local_dispatch_wakes_the_pools_of_its_store(tmp_path: Path) -> None:
     wake_ups = PoolWakeUps.bind(directory)
     assert wake_ups is not None
     store = open_store(settings.resolved_store_url())
-    dispatcher = make_dispatcher(settings, store)
+    dispatcher = make_dispatcher(settings, store, default_registry())
     listener = WakeUpListener(wake_ups.sock)
     try:
         assert isinstance(dispatcher, LocalDispatch)

@@ -166,3 +166,17 @@ def test_joint_limits_in_radians_are_refused_whatever_is_varied() -> None:
     assert [p["field"] for p in problems] == ["inputs.fixed.joint_limits_deg"]
     assert "degrees expected; these look like radians" in problems[0]["message"]
     assert dry_check(spec(fixed={**BASE["fixed"], "joint_limits_deg": [[-150, 150]] * 3})) == []
+
+
+def test_a_per_design_study_is_priced_by_its_dearest_design_not_its_first() -> None:
+    """The map's cost grows with its grid: a study from 5 x 5 up to 401 x 401 grids is
+    priced at the dearest design tried, so it cannot pass the refusal before queuing on
+    its cheap first design."""
+    process = default_registry().get("planar3r-dexterity-map")
+    assert process is not None
+    fixed = {key: value for key, value in BASE["fixed"].items() if key != "grid"}
+    study = spec(fixed=fixed, vary={"grid.points_per_axis": [5, 401, 3]}, engine="per-design")
+    dearest = 401 * 401 / process.cost_limit
+    assert study_cost(study) == pytest.approx(3 * dearest * 1e6, abs=1)
+    cheap_first = 5 * 5 / process.cost_limit
+    assert study_cost(study) > 100 * 3 * cheap_first * 1e6

@@ -43,6 +43,7 @@ from worker.families.planar_serial.jobs.map_notes import (
 )
 from worker.families.planar_serial.jobs.map_statistics import map_areas, map_summary
 from worker.families.planar_serial.jobs.regions import (
+    Bands,
     LimitedRay,
     limited_ray_profile,
     region_table,
@@ -94,15 +95,18 @@ def run_dexterity_map(spec: DexterityMapSpec, ctx: JobContext) -> JobOutcome:
     if sampling is not None:
         ray = limited_ray_profile(links, sampling.joint_limits_rad, RADIAL_ANGLE_DEG)
     warnings = map_warnings(spec, grid, int(np.count_nonzero(d_z > 0.0)), task_entries)
-    result = _result(spec, grid, sampling, ray, d_z, task_entries, trajectory, warnings)
-    notes = warnings + map_notes(spec, sampling, ray, task_entries, trajectory, result["regions"])
+    bands = planar_serial.full_dexterity_bands(links)  # the unlimited arm's, computed once
+    result = _result(spec, grid, sampling, ray, bands, d_z, task_entries, trajectory, warnings)
+    notes = warnings + map_notes(
+        spec, sampling, ray, task_entries, trajectory, result["regions"], bands
+    )
     errata = dexterity_map_errata_notes(spec, result)
 
     artifacts: tuple[Artifact, ...] = ()
     if spec.plots:
         progress.report(90.0, "plots")
         path = None if spec.trajectory is None else trajectory_path(spec.trajectory)
-        artifacts = _plots(spec, sampling, grid, d_z, task_xy, path, (radial_d, radial_dz))
+        artifacts = _plots(spec, sampling, grid, bands, d_z, task_xy, path, (radial_d, radial_dz))
     progress.report(97.0, "data files")
     artifacts += dexterity_map_files(spec, grid, d_z, region)
     progress.report(100.0, "done")
@@ -126,16 +130,17 @@ def _result(
     grid: WorkspaceGrid,
     sampling: LimitedJoints | None,
     ray: LimitedRay | None,
+    unlimited_bands: Bands,
     d_z: FloatArray,
     task_entries: list[dict[str, Any]],
     trajectory: dict[str, float | int] | None,
     warnings: list[str],
 ) -> dict[str, Any]:
     links = spec.links
-    bands = planar_serial.full_dexterity_bands(links) if ray is None else ray.bands
-    areas = map_areas(links, grid, sampling, d_z)
+    bands = unlimited_bands if ray is None else ray.bands
+    areas = map_areas(links, grid, sampling, d_z, bands=unlimited_bands)
     if "unlimited_reference" in areas:
-        areas["unlimited_reference"]["regions"] = region_table(links)
+        areas["unlimited_reference"]["regions"] = region_table(links, bands=unlimited_bands)
     return {
         "links": list(links),
         "joint_limits_deg": _limits_list(spec),
@@ -152,7 +157,7 @@ def _result(
                 "method": map_method(sampling),
             },
         },
-        "regions": region_table(links, ray),
+        "regions": region_table(links, ray, bands=unlimited_bands),
         "full_dexterity_bands": [list(band) for band in bands],
         "areas": areas,
         "summary": {
@@ -176,6 +181,7 @@ def _plots(
     spec: DexterityMapSpec,
     sampling: LimitedJoints | None,
     grid: WorkspaceGrid,
+    bands: Bands,
     d_z: FloatArray,
     task_xy: FloatArray,
     path: FloatArray | None,
@@ -186,7 +192,6 @@ def _plots(
     l1, l2, l3 = links
     title = f"3R arm ({l1:g}, {l2:g}, {l3:g}){', joint-limited' if limited else ''}"
     radii = planar_serial.region_radii(links)
-    bands = planar_serial.full_dexterity_bands(links)
     shown = np.where(d_z > 0.0, d_z, np.nan)  # NaN: drawn as unreachable
     labels = spec.labels if task_xy.size else None
     points = task_xy if task_xy.size else None

@@ -13,7 +13,7 @@ from typing import Any
 
 from worker.families.planar_serial import kinematics as planar_serial
 from worker.families.planar_serial.jobs.dexterity_evaluation import LimitedJoints, WorkspaceGrid
-from worker.families.planar_serial.jobs.regions import LimitedRay, region_2_note
+from worker.families.planar_serial.jobs.regions import Bands, LimitedRay, region_2_note
 from worker.families.planar_serial.jobs.task_points import MAX_LISTED_SHORTFALLS, shortfall_notes
 from worker.families.planar_serial.specs import DexterityMapSpec
 
@@ -77,9 +77,11 @@ def map_notes(
     task_entries: list[dict[str, Any]],
     trajectory: dict[str, float | int] | None,
     regions: list[dict[str, Any]],
+    bands: Bands,
 ) -> list[str]:
-    """The notes after the warnings: Region 2, how d_z was computed, the shortfalls."""
-    notes = [region_2_note(spec.links, regions, ray)]
+    """The notes after the warnings: Region 2, how d_z was computed, the shortfalls
+    (``bands``: the unlimited arm's full-dexterity bands)."""
+    notes = [region_2_note(spec.links, regions, ray, bands=bands)]
     if spec.joint_limits_deg is not None and sampling is None:
         notes.append("Every joint limit spans the full turn [-180, 180]: the exact closed form "
                      "for unlimited joints was used.")  # fmt: skip

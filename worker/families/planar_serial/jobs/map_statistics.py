@@ -38,12 +38,19 @@ def map_summary(d_z: NDArray[np.float64]) -> dict[str, float | int]:
 
 
 def map_areas(
-    links: Links, grid: WorkspaceGrid, sampling: LimitedJoints | None, d_z: NDArray[np.float64]
+    links: Links,
+    grid: WorkspaceGrid,
+    sampling: LimitedJoints | None,
+    d_z: NDArray[np.float64],
+    *,
+    bands: tuple[tuple[float, float], ...] | None = None,
 ) -> dict[str, Any]:
     """Reachable and fully dexterous areas: exact for revolute joints; under joint limits
     those of the limited arm, counted on the map d_z (ny, nx), with the revolute ones as
-    ``unlimited_reference`` (its ``regions`` are the job's to add)."""
-    bands = planar_serial.full_dexterity_bands(links)
+    ``unlimited_reference`` (its ``regions`` are the job's to add).  ``bands``: the
+    unlimited arm's full-dexterity bands, if the caller has them already."""
+    if bands is None:
+        bands = planar_serial.full_dexterity_bands(links)
     inner, outer = planar_serial.reach_radii(links)
     unlimited = {
         "reachable": math.pi * (outer**2 - inner**2),

@@ -29,6 +29,7 @@ from worker.families.planar_serial.kinematics.ray import ray_dexterity
 __all__ = [
     "PAPER_REGION_CLAIMS",
     "REGION_NAMES",
+    "Bands",
     "LimitedRay",
     "describe_bands",
     "limited_ray_profile",
@@ -51,11 +52,13 @@ PAPER_REGION_CLAIMS = {
     "of the workspace",
     4: "d > l1 + l2 + l3: beyond the reach of the end-effector (printed as a second 'Region 3')",
 }
+#: Closed radius intervals (lo, hi), sorted and disjoint (``full_dexterity_bands``).
+Bands = tuple[tuple[float, float], ...]
 #: Distances sampled per region to find the range of d_z along a ray.
 RAY_SAMPLES = 4001
 
 
-def describe_bands(bands: tuple[tuple[float, float], ...]) -> str:
+def describe_bands(bands: Bands) -> str:
     """'[0, 7] ∪ [9, 21]' (lengths with up to 6 significant digits), or 'nowhere'."""
     if not bands:
         return "nowhere"
@@ -138,7 +141,9 @@ def _along(limited: LimitedRay) -> str:
     return f"with these joint limits, along the ray at {limited.angle_deg:g}°: "
 
 
-def region_table(links: Links, limited: LimitedRay | None = None) -> list[dict[str, Any]]:
+def region_table(
+    links: Links, limited: LimitedRay | None = None, *, bands: Bands | None = None
+) -> list[dict[str, Any]]:
     """The paper's regions 1-4 with their claims and the exact findings.
 
     Each entry: region, name, d_from, d_to (None for region 4), paper, corrected, and the
@@ -146,11 +151,12 @@ def region_table(links: Links, limited: LimitedRay | None = None) -> list[dict[s
     region), d_z_min, d_z_min_at, d_z_max (along a ray over the closed interval
     [d_from, d_to]; None for an empty region).  Without ``limited`` they are the
     unlimited arm's (d_z depends on d only); with it, the joint-limited arm's along its
-    ray, and ``paper`` says that the claim was made for unlimited joints.
+    ray, and ``paper`` says that the claim was made for unlimited joints.  ``bands``:
+    the unlimited arm's full-dexterity bands, if the caller has them already.
     """
     edges = _region_edges(links)
     if limited is None:
-        bands = planar_serial.full_dexterity_bands(links)
+        bands = planar_serial.full_dexterity_bands(links) if bands is None else bands
         where, claimed = "", ""
     else:
         bands, where, claimed = limited.bands, _along(limited), "; claimed for unlimited joints"
@@ -190,13 +196,20 @@ def region_table(links: Links, limited: LimitedRay | None = None) -> list[dict[s
 
 
 def region_2_note(
-    links: Links, table: list[dict[str, Any]] | None = None, limited: LimitedRay | None = None
+    links: Links,
+    table: list[dict[str, Any]] | None = None,
+    limited: LimitedRay | None = None,
+    *,
+    bands: Bands | None = None,
 ) -> str:
     """A note contrasting the paper's Region 2 with the exact full-dexterity bands
-    (``table``: :func:`region_table` of these links and ``limited``, if already
-    computed); under joint limits, the limited arm's along its ray."""
+    (``table``: :func:`region_table` of these links and ``limited``, and ``bands``: the
+    unlimited arm's, if already computed); under joint limits, the limited arm's along
+    its ray."""
     l1, l2, l3 = links
-    unlimited = describe_bands(planar_serial.full_dexterity_bands(links))
+    if bands is None:
+        bands = planar_serial.full_dexterity_bands(links)
+    unlimited = describe_bands(bands)
     arm = f"({l1:.6g}, {l2:.6g}, {l3:.6g})"
     source = "docs/methods/planar-serial.md"
     if limited is None:
@@ -210,7 +223,7 @@ def region_2_note(
         f"The paper's Region 2 (l3 < d <= l1 + l2 - l3 = {l1 + l2 - l3:.6g}, eq 13) is not the "
         f"fully dexterous set: {found}"
     )
-    regions = region_table(links, limited) if table is None else table
+    regions = region_table(links, limited, bands=bands) if table is None else table
     inner = [r for r in regions[:2] if r["d_z_min"] is not None]
     dip = min(inner, key=lambda r: float(r["d_z_min"]))
     if dip["d_z_min"] < 1.0 - FULL_DEXTERITY_TOL:

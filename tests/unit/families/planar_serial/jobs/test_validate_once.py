@@ -73,3 +73,25 @@ def test_the_other_jobs_trust_their_links_too(
     calls = count_link_checks(monkeypatch)
     process.run(spec, RecordingContext())
     assert len(calls) <= 3
+
+
+@pytest.mark.parametrize("example", [0, 1])
+def test_one_job_finds_the_full_dexterity_bands_once(
+    monkeypatch: pytest.MonkeyPatch, example: int
+) -> None:
+    """The unlimited arm's bands feed the regions, areas, notes and figures: found once
+    and passed on (four or five times per job before)."""
+    from worker.families.planar_serial import kinematics
+
+    assert MAP is not None
+    spec = validate_inputs(MAP, {**MAP.examples[example].inputs, "plots": True})
+    calls: list[int] = []
+    real = kinematics.full_dexterity_bands
+
+    def counting(links: Any) -> Any:
+        calls.append(1)
+        return real(links)
+
+    monkeypatch.setattr(kinematics, "full_dexterity_bands", counting)
+    MAP.run(spec, RecordingContext())
+    assert len(calls) == 1
