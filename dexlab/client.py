@@ -148,11 +148,19 @@ class Client:
         *,
         example: int | None = None,
         idempotency_key: str | None = None,
+        reuse: bool = True,
+        share: bool = True,
     ) -> Job:
         """Queue a job with ``inputs``, or with the inputs of worked example ``example``
         (from 0).  The submission carries an ``Idempotency-Key`` (a fresh one unless
-        given), the same on every retry, so it never makes two jobs."""
-        body = {"inputs": self._inputs(process_id, inputs, example)}
+        given), the same on every retry, so it never makes two jobs.  A stored result
+        of the same inputs may answer it at once (``reuse=False``: compute afresh);
+        ``share=False`` keeps its result from other API keys (docs/reuse.md)."""
+        body: dict[str, Any] = {"inputs": self._inputs(process_id, inputs, example)}
+        if not reuse:
+            body["reuse"] = False
+        if not share:
+            body["share"] = False
         key = idempotency_key or new_idempotency_key()
         doc = self.document("POST", api_path("processes", process_id, "execution"),
                              json=body, headers={"Idempotency-Key": key})  # fmt: skip

@@ -62,3 +62,18 @@ def test_another_key_is_refused_with_exit_1() -> None:
     refused = CliRunner().invoke(cli, ["reuse", "invalidate", "fourbar-grashof",
                                        "--api-key", "alice-key"])  # fmt: skip
     assert refused.exit_code == 1 and "admin" in refused.output
+
+
+def test_the_client_asks_for_a_fresh_unshared_computation() -> None:
+    bodies: list[dict[str, object]] = []
+
+    def service(request: httpx.Request) -> httpx.Response:
+        bodies.append(json.loads(request.content))
+        return httpx.Response(201, json={"jobID": "j", "processID": "p", "status": "accepted"})
+
+    client = Client("http://dexlab.test")
+    client._http = httpx.Client(base_url="http://dexlab.test",
+                                transport=httpx.MockTransport(service))  # fmt: skip
+    client.submit("p", {"x": 1})
+    client.submit("p", {"x": 1}, reuse=False, share=False)
+    assert bodies == [{"inputs": {"x": 1}}, {"inputs": {"x": 1}, "reuse": False, "share": False}]
