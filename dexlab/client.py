@@ -148,11 +148,19 @@ class Client:
         *,
         example: int | None = None,
         idempotency_key: str | None = None,
+        reuse: bool = True,
+        share: bool = True,
     ) -> Job:
         """Queue a job with ``inputs``, or with the inputs of worked example ``example``
         (from 0).  The submission carries an ``Idempotency-Key`` (a fresh one unless
-        given), the same on every retry, so it never makes two jobs."""
-        body = {"inputs": self._inputs(process_id, inputs, example)}
+        given), the same on every retry, so it never makes two jobs.  A stored result
+        of the same inputs may answer it at once (``reuse=False``: compute afresh);
+        ``share=False`` keeps its result from other API keys (docs/reuse.md)."""
+        body: dict[str, Any] = {"inputs": self._inputs(process_id, inputs, example)}
+        if not reuse:
+            body["reuse"] = False
+        if not share:
+            body["share"] = False
         key = idempotency_key or new_idempotency_key()
         doc = self.document("POST", api_path("processes", process_id, "execution"),
                              json=body, headers={"Idempotency-Key": key})  # fmt: skip
@@ -172,6 +180,13 @@ class Client:
         :class:`~dexlab.errors.WaitTimeout` after ``timeout`` seconds (the job goes on)."""
         job = self.submit(process_id, inputs, example=example)
         return job.wait(timeout, progress=progress)
+
+    def invalidate_reuse(self, process_id: str, key: str | None = None) -> dict[str, Any]:
+        """Stop the stored results of ``process_id`` (of result key ``key`` only, when
+        given) from answering new jobs, deleting none (an admin key's right):
+        ``{"processID", "result_key", "invalidated"}``."""
+        params = {} if key is None else {"key": key}
+        return dict(self.document("DELETE", api_path("reuse", process_id), params=params))
 
     def job(self, job_id: str) -> Job:
         """The job with this ID (its status read now)."""

@@ -37,7 +37,7 @@ from service.pages import routes as v1_pages
 from service.problems import PROBLEM_TYPES, problem_response
 from service.request_guard import RequestGuard
 from service.request_id import RequestId
-from service.routes import health, job_events, jobs, landing, processes
+from service.routes import health, job_events, jobs, landing, processes, reuse
 from service.routes.process_operations import (
     execution_router,
     family_of,
@@ -191,6 +191,7 @@ def create_app(settings: Settings, *, registry: ProcessRegistry | None = None) -
     app.include_router(execution_router(registry))
     app.include_router(processes.router)
     app.include_router(jobs.router)
+    app.include_router(reuse.router)
     app.include_router(health.router)
     app.include_router(landing.router)
     app.include_router(ogc_router())  # OGC API - Processes at /ogc/, same store and jobs

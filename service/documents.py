@@ -46,9 +46,21 @@ def job_href(job_id: str) -> str:
     return f"/v1/jobs/{job_id}"
 
 
-def status_document(job: JobRecord, *, worker: bool = True, owner: bool = False) -> StatusDocument:
+def reused_from(job: JobRecord, admin: bool) -> str | bool | None:
+    """What a document says of the job a reused result came from: its ID for an admin
+    or when that job was this job's owner's (even once deleted), else ``True``; None
+    for a job that computed its own result."""
+    if job.reused_from is None:
+        return None
+    return job.reused_from if admin or job.reused_own else True
+
+
+def status_document(
+    job: JobRecord, *, worker: bool = True, owner: bool = False, admin: bool = False
+) -> StatusDocument:
     """``GET /v1/jobs/{jobID}``: where the job is, with links; ``worker_id`` when
-    ``worker`` (admins only, with API keys), the job's ``owner`` when ``owner``."""
+    ``worker`` (admins only, with API keys), the job's ``owner`` when ``owner``,
+    ``reused_from`` for a job answered by a stored result (:func:`reused_from`)."""
     links = [
         Link(href=job_href(job.job_id), rel="self", type=JSON, title="this status document"),
         Link(href=f"/v1/processes/{job.process_id}", rel="process", type=JSON,
@@ -71,6 +83,9 @@ def status_document(job: JobRecord, *, worker: bool = True, owner: bool = False)
     if job.children_total is not None:
         optional["chunks"] = Chunks(total=job.children_total, ended=job.children_done,
                                     failed=job.children_failed)  # fmt: skip
+    origin = reused_from(job, admin)
+    if origin is not None:
+        optional["reused_from"] = origin
     return StatusDocument(
         jobID=job.job_id,
         processID=job.process_id,
@@ -102,12 +117,17 @@ def artifact_link(base: str, artifact: ArtifactInfo) -> ArtifactLink:
     )
 
 
-def results_document(job: JobRecord, result: Mapping[str, Any]) -> ResultsDocument:
-    """``GET /v1/jobs/{jobID}/results``: the result and every artifact's link."""
+def results_document(
+    job: JobRecord, result: Mapping[str, Any], *, admin: bool = False
+) -> ResultsDocument:
+    """``GET /v1/jobs/{jobID}/results``: the result and every artifact's link (and
+    ``reused_from``, as in :func:`status_document`)."""
     base = job_href(job.job_id)
+    origin = reused_from(job, admin)
     return ResultsDocument(
         jobID=job.job_id,
         processID=job.process_id,
+        **({} if origin is None else {"reused_from": origin}),
         result=JobResult.model_validate(dict(result)),
         artifacts=[artifact_link(base, a) for a in job.artifacts],
         links=[

@@ -22,11 +22,26 @@ from worker.settings import WorkerSettings
 from worker.store.base import JobStore
 from worker.submission import submit_request
 
-__all__ = ["RETENTION_FIELD", "check_retention", "submit_job", "wait_while_connected"]
+__all__ = [
+    "RETENTION_FIELD",
+    "check_retention",
+    "no_cache",
+    "submit_job",
+    "wait_while_connected",
+]
 
 #: The execute body's member (beside ``inputs``, in /v1 and OGC bodies) that asks for a
 #: shorter retention than the service's.
 RETENTION_FIELD = "retention_s"
+
+
+def no_cache(cache_control: str | None) -> bool:
+    """Whether a ``Cache-Control`` request header says ``no-cache`` (as ``"reuse":
+    false`` does: compute afresh)."""
+    if not cache_control:
+        return False
+    directives = (part.strip().split("=", 1)[0].lower() for part in cache_control.split(","))
+    return "no-cache" in directives
 
 
 def check_retention(settings: WorkerSettings, retention_s: float | None) -> None:
@@ -56,18 +71,25 @@ def submit_job(
     wants_sync: bool,
     owner: str = "",
     retention_s: float | None = None,
+    reuse: bool = True,
+    share: bool = True,
 ) -> tuple[JobRecord, bool, bool]:
     """Submit a job owned by ``owner``, kept ``retention_s`` once finished (None: the
     service's retention) (blocking store work, run in the threadpool); ``(job, created,
     sync)``: ``sync`` when the client asked for a synchronous answer and the process
     allows one for these inputs (its ``sync_cost_limit``, as the submission priced
-    them: the inputs are validated and priced once)."""
+    them: the inputs are validated and priced once), or the job was answered at once by
+    a stored result (whatever its cost: ``reuse``, ``share``: worker.submission)."""
     check_retention(settings, retention_s)
     submission = submit_request(
         store, registry, settings, process_id, inputs, idempotency_key, dispatcher, owner,
-        retention_s,
+        retention_s, reuse=reuse, share=share,
     )  # fmt: skip
-    return submission.job, submission.created, wants_sync and submission.cheap
+    return (
+        submission.job,
+        submission.created,
+        wants_sync and (submission.cheap or submission.reused),
+    )
 
 
 async def wait_while_connected(

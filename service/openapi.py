@@ -25,7 +25,7 @@ from service.ogc.schemas import OGC_ROUTE_PROBLEMS, document_process_ids
 from service.ogc.vocabulary import is_ogc_path
 from service.openapi_streams import artifact_responses, event_stream_response
 from service.problems import PROBLEM_TYPES
-from service.schemas import RETENTION, stream_document_schemas
+from service.schemas import RETENTION, REUSE, SHARE, stream_document_schemas
 from worker.processes import ProcessRegistry
 
 __all__ = ["PROBLEM_SCHEMA", "install_openapi"]
@@ -85,6 +85,7 @@ ROUTE_PROBLEMS: dict[tuple[str, str], tuple[int, ...]] = {
     ("get", "/v1/jobs/{job_id}/results/{name}"): (404, 410, 422, 503, 507),
     ("get", "/methods"): (),
     ("get", "/methods/{slug}"): (404,),
+    ("delete", "/v1/reuse/{process_id}"): (403, 404, 422, 503),
 }
 
 
@@ -92,6 +93,8 @@ class _RetentionMember(BaseModel):
     """The execute body's ``retention_s``, beside ``inputs``."""
 
     retention_s: float | None = RETENTION
+    reuse: bool = REUSE
+    share: bool = SHARE
 
 
 #: A page, as the routes that negotiate (``?f=html``, ``Accept: text/html``) answer.
@@ -168,7 +171,7 @@ def _process_bodies(
         ref_template="#/components/schemas/{model}",
     )
     document["components"]["schemas"].update(top.get("$defs", {}))
-    retention = _RetentionMember.model_json_schema()["properties"]["retention_s"]
+    members = _RetentionMember.model_json_schema()["properties"]
     for definition in definitions:
         path = document["paths"].get(f"/v1/processes/{definition.id}/execution")
         if path is None or "post" not in path:
@@ -190,7 +193,9 @@ def _process_bodies(
             "additionalProperties": False,
             "properties": {
                 "inputs": refs[(definition.inputs_model, "validation")],
-                "retention_s": retention,
+                "retention_s": members["retention_s"],
+                "reuse": members["reuse"],
+                "share": members["share"],
             },
         }
         content: dict[str, Any] = {"schema": schema}

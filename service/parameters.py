@@ -15,7 +15,14 @@ from pydantic import AfterValidator
 from worker.contract import JobStatus
 from worker.store.sql import decode_cursor
 
-__all__ = ["CursorQuery", "IdempotencyKey", "JobListQuery", "JobListQueryDep", "PreferHeader"]
+__all__ = [
+    "CacheControlHeader",
+    "CursorQuery",
+    "IdempotencyKey",
+    "JobListQuery",
+    "JobListQueryDep",
+    "PreferHeader",
+]
 
 
 def _cursor(value: str | None) -> str | None:
@@ -29,6 +36,8 @@ IdempotencyKey = Annotated[
     str | None, Header(alias="Idempotency-Key", min_length=1, max_length=255)
 ]
 PreferHeader = Annotated[str | None, Header(max_length=255)]
+#: ``Cache-Control`` of an execute request: ``no-cache`` computes afresh (``reuse: false``).
+CacheControlHeader = Annotated[str | None, Header(alias="Cache-Control", max_length=255)]
 
 #: ``cursor``: where a ``next`` link continues; only a cursor this service issued.
 CursorQuery = Annotated[

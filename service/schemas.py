@@ -18,6 +18,8 @@ from pydantic.json_schema import models_json_schema
 
 __all__ = [
     "RETENTION",
+    "REUSE",
+    "SHARE",
     "STREAM_DOCUMENTS",
     "ArtifactLink",
     "Chunks",
@@ -48,6 +50,31 @@ RETENTION: Any = Field(
     description="Keep the finished job and its results this many seconds (at most, and "
     "by default, the service's DEXLAB_RESULT_TTL_S); the status document's `expires` "
     "says until when.",
+)
+
+
+#: The execute body's ``reuse`` (beside ``inputs``, so input schemas and keys stay).
+REUSE: Any = Field(
+    True,
+    strict=True,
+    description="false: compute afresh, whatever result of the same inputs is stored "
+    "(`Cache-Control: no-cache` says the same); true: a stored result of the same result "
+    "key may answer the job at once (`reused_from` in its documents).",
+)
+#: The execute body's ``share``.
+SHARE: Any = Field(
+    True,
+    strict=True,
+    description="false: this job's result is never reused by another API key's job.",
+)
+
+
+#: The status and results documents' ``reused_from``.
+REUSED_FROM: Any = Field(
+    None,
+    description="A job answered at once by a stored result of the same result key: the "
+    "ID of the job that computed it when that job was the caller's (or the caller is an "
+    "admin), else true; absent for a job that computed its own result.",
 )
 
 
@@ -115,6 +142,7 @@ class StatusDocument(_Document):
     chunks: Chunks | None = Field(
         None, description="A study's chunk jobs: how many, how many ended, how many failed."
     )
+    reused_from: str | bool | None = REUSED_FROM
 
 
 class JobList(_Document):
@@ -155,6 +183,7 @@ class ResultsDocument(_Document):
 
     jobID: str
     processID: str
+    reused_from: str | bool | None = REUSED_FROM
     result: JobResult
     artifacts: list[ArtifactLink]
     links: list[Link]

@@ -134,3 +134,14 @@ class JobRecord:
     children_total: int | None = None
     children_done: int = 0
     children_failed: int = 0
+    #: The digest naming the computation (worker.provenance.result_key); None for a job
+    #: stored before result keys were.
+    result_key: str | None = None
+    #: For a job answered by reuse: the job that computed its result (it may since
+    #: have been deleted), and whether that job was this job's owner's.
+    reused_from: str | None = None
+    reused_own: bool = False
+    #: The reuse its submission asked for ('owner', 'all'; None: none), and whether
+    #: other owners may reuse its result (a study's chunks inherit both).
+    reuse_scope: str | None = None
+    shareable: bool = True

@@ -33,6 +33,8 @@ from worker.idle import IdleWait
 from worker.logs import log_context
 from worker.processes import ProcessRegistry
 from worker.progress import StoreProgress
+from worker.provenance.build import provenance_block, result_key
+from worker.provenance.stamp import stamp_outcome
 from worker.result_commit import commit_outcome, error_document, record_failure
 from worker.settings import WorkerSettings
 from worker.store.base import Claim, JobStore, NewJob
@@ -222,6 +224,8 @@ class WorkerLoop:
             child = self.registry.get(steps.child_process)
             if child is None:
                 raise RuntimeError(f"this worker does not know the process {steps.child_process!r}")
+            build = self.settings.build
+            scope = job.reuse_scope if job.reuse_scope in ("owner", "all") else None
             children = [
                 NewJob(
                     process_id=child.id,
@@ -230,6 +234,10 @@ class WorkerLoop:
                     max_attempts=job.max_attempts,
                     owner=job.owner,
                     parent_id=job.job_id,
+                    # a re-run of the study reuses its stored chunks (worker.store.reuse)
+                    result_key=result_key(child.id, child_inputs, child.version, build),
+                    reuse="all" if scope == "all" else ("owner" if scope else None),
+                    share=job.shareable,
                 )
                 for child_inputs in steps.split(inputs)
             ]
@@ -245,7 +253,16 @@ class WorkerLoop:
             return
         log.info("job %s split into %d jobs", job.job_id, len(ids))
         if self.on_queued is not None:
-            self.on_queued(ids or [job.job_id])
+            # chunks answered by stored results are not queued; with every chunk so
+            # answered, the study itself is queued to assemble
+            try:
+                statuses = self.store.statuses([*ids, job.job_id])
+            except StoreUnavailable:  # tell of them all: a claim of a done job finds none
+                self.on_queued([*ids, job.job_id])
+                return
+            queued = [i for i, s in statuses.items() if s is JobStatus.ACCEPTED]
+            if queued:
+                self.on_queued(queued)
 
     def _notify_parent(self, parent_id: str) -> None:
         """Send the parent on if this job's end queued it to assemble."""
@@ -292,7 +309,12 @@ class WorkerLoop:
         result = dict(outcome.result)
         result["notes"] = list(outcome.all_notes)
         result["paper_errata"] = list(outcome.errata)
-        return result, list(outcome.artifacts)
+        build = self.settings.build
+        key = job.result_key or result_key(job.process_id, job.inputs, definition.version, build)
+        provenance = provenance_block(
+            job.process_id, definition.version, build, self.settings.backend_name(), key
+        )
+        return stamp_outcome(result, outcome.artifacts, provenance)
 
 
 class _Backoff:

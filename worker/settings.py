@@ -8,9 +8,13 @@ down; the job runtime receives it as a :class:`WorkerSettings`.
 from __future__ import annotations
 
 import os
+from functools import cached_property
 from pathlib import Path
+from typing import Literal
 
 from pydantic import BaseModel, ConfigDict, Field
+
+from worker.provenance.build import BuildInfo, read_build
 
 __all__ = ["WorkerSettings"]
 
@@ -123,6 +127,31 @@ class WorkerSettings(BaseModel):
         description="How much lower than their parent's the scheduling priority of worker "
         "processes is (os.nice increment), so the API stays responsive.",
     )
+
+    # -- reuse and provenance -------------------------------------------------------------
+    reuse: Literal["all", "owner", "off"] = Field(
+        "owner",
+        description="Whose stored results a submission with the same result key reuses: "
+        "'owner' its own API key's (on a service without keys every job is the anonymous "
+        "owner's, so all), 'all' any key's shareable ones, 'off' none.",
+    )
+    build_id: str = Field(
+        "",
+        max_length=200,
+        description="The build label results name in their provenance and result keys; "
+        "empty: the git commit of the source checkout, read at start-up.",
+    )
+
+    @cached_property
+    def build(self) -> BuildInfo:
+        """The dexlab build, read once per settings tree (at start-up)."""
+        return read_build(self.build_id)
+
+    def backend_name(self) -> str:
+        """``<dispatch>/<store>``: ``local-pool/sqlite``, ``celery/postgresql``."""
+        dispatch = "celery" if self.broker_url else "local-pool"
+        store = self.resolved_store_url().split(":", 1)[0].split("+", 1)[0]
+        return f"{dispatch}/{store}"
 
     def resolved_store_url(self) -> str:
         """The store URL, defaulting to the SQLite file in the data directory."""

@@ -13,11 +13,12 @@ from collections.abc import Mapping
 from dataclasses import dataclass
 from typing import Any
 
-from worker.contract import JobRecord
+from worker.contract import JobRecord, JobStatus
 from worker.dispatch import Dispatcher
 from worker.errors import CostLimitExceeded, InvalidInputs
 from worker.input_validation import field_errors, field_path, validate_inputs
 from worker.processes import ProcessRegistry
+from worker.provenance.build import result_key
 from worker.request_hash import request_hash
 from worker.settings import WorkerSettings
 from worker.store.base import JobStore, NewJob, QueueLimits
@@ -38,11 +39,17 @@ __all__ = [
 class Submission:
     """A committed job, whether this request created it (not an idempotent replay), and
     whether it is cheap: it costs at most its process's ``sync_cost_limit``, so the
-    request may be answered synchronously (priced once, with the job's validation)."""
+    request may be answered synchronously (priced once, with the job's validation).
+    A job answered by a stored result is finished already (:attr:`reused`)."""
 
     job: JobRecord
     created: bool
     cheap: bool
+
+    @property
+    def reused(self) -> bool:
+        """Whether a stored result answered this job (it is successful already)."""
+        return self.job.reused_from is not None
 
 
 def queue_limits(settings: WorkerSettings, owner: str) -> QueueLimits:
@@ -67,11 +74,13 @@ def submit(
     dispatcher: Dispatcher | None = None,
     owner: str = "",
     retention_s: float | None = None,
+    reuse: bool = True,
+    share: bool = True,
 ) -> tuple[JobRecord, bool]:
     """:func:`submit_request`, answering ``(job, created)``."""
     submission = submit_request(
         store, registry, settings, process_id, raw_inputs, idempotency_key, dispatcher, owner,
-        retention_s,
+        retention_s, reuse=reuse, share=share,
     )  # fmt: skip
     return submission.job, submission.created
 
@@ -86,6 +95,9 @@ def submit_request(
     dispatcher: Dispatcher | None = None,
     owner: str = "",
     retention_s: float | None = None,
+    *,
+    reuse: bool = True,
+    share: bool = True,
 ) -> Submission:
     """Validate, check the cost limit, commit a job owned by ``owner`` (an API key's
     name; '' = anonymous) within its quotas, then dispatch it; the inputs are validated
@@ -96,6 +108,11 @@ def submit_request(
     The job is committed before it is dispatched, so a broker outage loses nothing (the
     sweeper sends it later); a replayed idempotent request is not dispatched again.  An
     idempotency key is the owner's own: another owner's same key makes another job.
+
+    With ``reuse`` (and ``settings.reuse`` not ``off``) a successful stored result of
+    the same result key, within the scope ``settings.reuse`` allows, answers the job at
+    once (:mod:`worker.store.reuse`); ``share=False`` keeps this job's result from other
+    owners.  The cost limit, quotas and submit rate apply all the same.
     """
     definition = registry.require(process_id)
     inputs = validate_inputs(definition, raw_inputs)
@@ -109,10 +126,6 @@ def submit_request(
             cost_limit=definition.cost_limit,
             cost_unit=definition.cost_unit,
         )
-    if definition.precheck is not None:
-        problems = definition.precheck(inputs)
-        if problems:
-            raise InvalidInputs(problems)
     stored_inputs = inputs.model_dump(mode="json")
     cheap = definition.sync_cost_limit > 0 and cost <= definition.sync_cost_limit
     new = NewJob(
@@ -126,8 +139,17 @@ def submit_request(
         cheap=cheap,
         retention_s=min(retention_s or settings.result_ttl_s, settings.result_ttl_s),
         limits=queue_limits(settings, owner),
+        result_key=result_key(process_id, stored_inputs, definition.version, settings.build),
+        reuse=settings.reuse if reuse and settings.reuse != "off" else None,
+        share=share,
     )
+    # A stored result of this key means these inputs passed the precheck once already
+    # (a design study's checks its designs: ~100 ms a reused answer need not pay).
+    if definition.precheck is not None and not (new.reuse and store.reusable(new)):
+        problems = definition.precheck(inputs)
+        if problems:
+            raise InvalidInputs(problems)
     job, created = store.create_job(new)
-    if created and dispatcher is not None:
+    if created and dispatcher is not None and job.status is JobStatus.ACCEPTED:
         dispatcher.dispatch(job.job_id, job.time_limit_s)
     return Submission(job, created, cheap)

@@ -13,7 +13,7 @@ from importlib.metadata import PackageNotFoundError, version
 
 import click
 
-from dexlab.cli import jobs, keys, processes, server
+from dexlab.cli import jobs, keys, processes, reuse, server
 from dexlab.cli.job_ids import AmbiguousJobId
 
 __all__ = ["cli", "main"]
@@ -39,6 +39,7 @@ server.register(cli)
 processes.register(cli)
 jobs.register(cli)
 keys.register(cli)
+reuse.register(cli)
 
 
 def main(argv: Sequence[str] | None = None) -> None:

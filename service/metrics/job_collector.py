@@ -38,6 +38,7 @@ QUEUED = (JobStatus.ACCEPTED, JobStatus.RUNNING)
 
 _COUNTERS = {
     "submitted": ("dexlab_jobs_submitted", "Jobs submitted."),
+    "reused": ("dexlab_jobs_reused", "Jobs answered at once by a stored result (reuse)."),
     "attempts": ("dexlab_job_attempts", "Attempts started (a claim by a worker)."),
     "retries": ("dexlab_job_retries", "Attempts after a job's first (its worker was lost)."),
 }

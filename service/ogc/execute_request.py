@@ -86,6 +86,17 @@ class OgcExecuteRequest(_Strict):
         description="dexlab: keep the finished job and its results this many seconds "
         "(at most, and by default, the service's DEXLAB_RESULT_TTL_S).",
     )
+    reuse: bool = Field(
+        True,
+        strict=True,
+        description="dexlab: false computes afresh (as `Cache-Control: no-cache` does); "
+        "true lets a stored result of the same inputs answer at once.",
+    )
+    share: bool = Field(
+        True,
+        strict=True,
+        description="dexlab: false keeps this job's result from other API keys' jobs.",
+    )
 
 
 @dataclass(frozen=True)

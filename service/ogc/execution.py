@@ -72,6 +72,7 @@ def submit_execute(
     wants_sync: bool,
     base_url: str,
     owner: str = "",
+    no_cache: bool = False,
 ) -> Submitted:
     """Check the request, commit the job (owned by ``owner``), keep its options
     (blocking: threadpool); ``base_url`` is where callbacks' links point.
@@ -88,12 +89,12 @@ def submit_execute(
     )
     job, created, sync = submit_job(
         store, registry, settings, process_id, inputs, idempotency_key, dispatcher, wants_sync,
-        owner, body.retention_s,
+        owner, body.retention_s, body.reuse and not no_cache, body.share,
     )  # fmt: skip
     if created:
         options = {**presentation.to_json(), "base": base_url}
         store.set_request_options(job.job_id, options, subscriber)
-    if sync:
+    if sync and job.reused_from is None:  # a stored result needs no worker
         sync = bool(store.live_workers(within_s=3 * settings.heartbeat_seconds + 1.0))
     return Submitted(job, created, sync, presentation)
 

@@ -9,7 +9,7 @@ from starlette.concurrency import run_in_threadpool
 from starlette.responses import Response
 
 from service.deps import ApiDep, RegistryDep, SettingsDep
-from service.execution import wait_while_connected
+from service.execution import no_cache, wait_while_connected
 from service.job_watcher import JobWatcher
 from service.ogc import pages as ogc_pages
 from service.ogc.execute_request import OgcExecuteRequest
@@ -34,7 +34,7 @@ from service.ogc.schemas import (
 from service.ogc.urls import public_urls
 from service.ogc.vocabulary import JSON, OGC_PREFIX, TAG
 from service.pages import FormatQuery
-from service.parameters import IdempotencyKey, PreferHeader
+from service.parameters import CacheControlHeader, IdempotencyKey, PreferHeader
 from worker.contract import JobRecord
 from worker.store.base import JobStore
 
@@ -159,6 +159,7 @@ async def execute(
     api: ApiDep,
     idempotency_key: IdempotencyKey = None,
     prefer: PreferHeader = None,
+    cache_control: CacheControlHeader = None,
 ) -> OgcStatusInfo | Response:
     """Create a job.  With no `Prefer`, a process that can run synchronously (its
     `sync-execute`, within its `sync_cost_limit`) answers with the results (waiting at
@@ -178,6 +179,7 @@ async def execute(
         not preferences.respond_async,
         urls.root,
         api.identity.name,
+        no_cache(cache_control),
     )
     mode = execution_mode(preferences, submitted.can_run_sync)
     job_id = submitted.job.job_id
@@ -185,7 +187,10 @@ async def execute(
     if not submitted.created:
         headers["Idempotent-Replayed"] = "true"
     watcher: JobWatcher = request.app.state.watcher
-    if mode.synchronous and await wait_while_connected(request, watcher, job_id, mode.wait_s):
+    reused = submitted.job.reused_from is not None  # finished already: no wait at all
+    if mode.synchronous and (
+        reused or await wait_while_connected(request, watcher, job_id, mode.wait_s)
+    ):
         headers["Link"] = f'<{urls.job(job_id)}>; rel="monitor"; type="{JSON}"'
         if mode.applied_if_sync:
             headers["Preference-Applied"] = mode.applied_if_sync

@@ -44,6 +44,8 @@ ExampleForm = dict[str, Any]
 
 _PLOTS = ("image/png", "image/svg+xml")
 _DOWNLOADS = frozenset({"text/csv", "application/x-npz"})
+#: The result members the job page shows under "Provenance", not among the results.
+PROVENANCE_KEYS = ("provenance", "result_hash", "reused_from")
 
 
 def landing_page(request: Request, pages: Pages, registry: ProcessRegistry) -> HTMLResponse:
@@ -264,6 +266,7 @@ def job_page(
         "errata_count": 0,
         "result": None,
         "downloads": [],
+        "provenance": None,
     }
     if result is not None and job.status is JobStatus.SUCCESSFUL:
         warnings = _warnings(result)
@@ -275,7 +278,7 @@ def job_page(
             errata_count=sum(1 for n in notes if n["erratum"]),
             result=result_view(
                 result,
-                leave_out=("notes", "paper_errata"),
+                leave_out=("notes", "paper_errata", *PROVENANCE_KEYS),
                 quantities=job_quantities(definition, result, job.inputs),
             ),
             downloads=[
@@ -285,6 +288,11 @@ def job_page(
                 }
                 for a in job.artifacts
             ],
+            provenance={
+                **({"reused_from": document["reused_from"]} if "reused_from" in document else {}),
+                **{k: result[k] for k in PROVENANCE_KEYS if k in result},
+            }
+            or None,
         )
     context.update(extra or {})
     return pages.render(request, template, context)

@@ -82,7 +82,9 @@ def get_job(job_id: str, response: Response, api: ApiDep, f: FormatQuery = None)
 
 def _status(job: JobRecord, identity: Identity) -> StatusDocument:
     """The status document as this caller may see it (``worker_id``, ``owner``)."""
-    return status_document(job, worker=identity.sees_workers, owner=identity.sees_owners)
+    return status_document(
+        job, worker=identity.sees_workers, owner=identity.sees_owners, admin=identity.admin
+    )
 
 
 @router.delete(
@@ -112,13 +114,13 @@ def _finished(store: JobStore, job_id: str, owner: str | None = None) -> JobReco
     return job
 
 
-def finished_document(store: JobStore, job: JobRecord) -> ResultsDocument:
+def finished_document(store: JobStore, job: JobRecord, admin: bool = False) -> ResultsDocument:
     """The result document of a finished job, or the problem that says why there is none."""
     job = _finished(store, job.job_id)
     result = store.get_result(job.job_id)
     if result is None:  # dismissed between the two reads
         raise JobDismissed(f"Job {job.job_id} was dismissed; it has no results.")
-    return results_document(job, result)
+    return results_document(job, result, admin=admin)
 
 
 @router.get(
@@ -132,7 +134,7 @@ def get_results(
 ) -> ResultsDocument:
     job = _job(api.store, job_id, api.identity.owner_scope)
     response.headers["Vary"] = "Accept"
-    return finished_document(api.store, job)
+    return finished_document(api.store, job, api.identity.admin)
 
 
 #: The artifact's validator; over-long values are 422 before anything is looked up.

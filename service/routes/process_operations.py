@@ -16,7 +16,7 @@ from fastapi import APIRouter, Request, Response
 from fastapi.responses import JSONResponse
 
 from service.deps import ApiDep
-from service.parameters import IdempotencyKey, PreferHeader
+from service.parameters import CacheControlHeader, IdempotencyKey, PreferHeader
 from service.routes.processes import EXECUTE_RESPONSES, ExecuteRequest, execute
 from service.schemas import StatusDocument
 from worker.processes import ProcessDefinition, ProcessRegistry
@@ -70,8 +70,11 @@ def _bound(process_id: str) -> Callable[..., Awaitable[StatusDocument | JSONResp
         api: ApiDep,
         idempotency_key: IdempotencyKey = None,
         prefer: PreferHeader = None,
+        cache_control: CacheControlHeader = None,
     ) -> StatusDocument | JSONResponse:
-        return await execute(process_id, body, request, response, api, idempotency_key, prefer)
+        return await execute(
+            process_id, body, request, response, api, idempotency_key, prefer, cache_control
+        )
 
     return run_process
 

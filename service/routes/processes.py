@@ -11,14 +11,16 @@ from starlette.concurrency import run_in_threadpool
 
 from service.deps import Api, ApiDep, RegistryDep
 from service.documents import as_json, job_href, status_document
-from service.execution import submit_job, wait_while_connected
+from service.execution import no_cache, submit_job, wait_while_connected
 from service.job_watcher import JobWatcher
 from service.pages import FormatQuery
-from service.parameters import IdempotencyKey, PreferHeader
+from service.parameters import CacheControlHeader, IdempotencyKey, PreferHeader
 from service.preferences import requested_wait
 from service.routes.jobs import finished_document
 from service.schemas import (
     RETENTION,
+    REUSE,
+    SHARE,
     Link,
     ProcessDescription,
     ProcessList,
@@ -49,6 +51,8 @@ class ExecuteRequest(BaseModel):
 
     inputs: dict[str, Any] = Field(..., description="The process inputs (see its schema).")
     retention_s: float | None = RETENTION
+    reuse: bool = REUSE
+    share: bool = SHARE
 
 
 # The process list and descriptions need no store and take no threadpool thread: they
@@ -128,6 +132,7 @@ async def execute(
     api: ApiDep,
     idempotency_key: IdempotencyKey = None,
     prefer: PreferHeader = None,
+    cache_control: CacheControlHeader = None,
 ) -> StatusDocument | JSONResponse:
     """Queue a job.  With ``Prefer: wait=N`` and a request within the process's
     ``sync_cost_limit``, answer ``200`` with the result document if the job finishes
@@ -148,14 +153,21 @@ async def execute(
         wait is not None,
         api.identity.name,
         body.retention_s,
+        body.reuse and not no_cache(cache_control),
+        body.share,
     )
     response.headers["Location"] = job_href(job.job_id)
     if not created:
         response.headers["Idempotent-Replayed"] = "true"
     if wait is not None and synchronous:
         watcher: JobWatcher = request.app.state.watcher
-        if await wait_while_connected(request, watcher, job.job_id, wait):
-            document = await run_in_threadpool(_finished_document, api.store, job.job_id)
+        # a job answered by a stored result is finished already: no wait at all
+        if job.reused_from is not None or await wait_while_connected(
+            request, watcher, job.job_id, wait
+        ):
+            document = await run_in_threadpool(
+                _finished_document, api.store, job.job_id, api.identity.admin
+            )
             headers = {
                 "Location": response.headers["Location"],
                 "Preference-Applied": f"wait={wait:g}",
@@ -166,11 +178,13 @@ async def execute(
 
 def _status(job: JobRecord, api: Api) -> StatusDocument:
     identity = api.identity
-    return status_document(job, worker=identity.sees_workers, owner=identity.sees_owners)
+    return status_document(
+        job, worker=identity.sees_workers, owner=identity.sees_owners, admin=identity.admin
+    )
 
 
-def _finished_document(store: JobStore, job_id: str) -> ResultsDocument:
+def _finished_document(store: JobStore, job_id: str, admin: bool = False) -> ResultsDocument:
     job = store.get_job(job_id)
     if job is None:  # pragma: no cover - jobs are only deleted by retention, later
         raise NoSuchJob(f"No job {job_id!r}.")
-    return finished_document(store, job)
+    return finished_document(store, job, admin)

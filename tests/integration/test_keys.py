@@ -190,7 +190,8 @@ def test_an_admin_sees_every_owner_and_filters_by_owner(
     clients: dict[str, httpx.Client],
 ) -> None:
     alice, bob, root = clients["alice"], clients["bob"], clients["root"]
-    a, b = submit(alice), submit(bob)
+    # bob's job computed afresh (Cache-Control: no-cache), so a worker ran it
+    a, b = submit(alice), submit(bob, **{"Cache-Control": "no-cache"})
     wait_terminal(root, b)
     everything = {j["jobID"]: j for j in root.get("/v1/jobs?limit=1000").json()["jobs"]}
     assert {a, b} <= set(everything)

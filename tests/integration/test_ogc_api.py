@@ -223,7 +223,8 @@ async def test_no_preference_runs_synchronously_with_a_results_document(
 
 
 async def test_respond_async_respond_sync_and_wait(pool: httpx.AsyncClient) -> None:
-    body = {"inputs": FOURBAR, "response": "document"}
+    # computed afresh: an earlier test's stored result would answer at once (reuse)
+    body = {"inputs": FOURBAR, "response": "document", "reuse": False}
     r = await pool.post(FOURBAR_URL, json=body, headers={"Prefer": "respond-async"})
     assert r.status_code == 201 and r.headers["preference-applied"] == "respond-async"
     status = r.json()
@@ -609,7 +610,7 @@ async def test_links_follow_a_trusted_proxy_only(idle: httpx.AsyncClient) -> Non
         "X-Forwarded-Prefix": "/kinematics",
         "X-Forwarded-For": "203.0.113.7",
     }
-    r = await idle.post(FOURBAR_URL, json={"inputs": FOURBAR}, headers=headers)
+    r = await idle.post(FOURBAR_URL, json={"inputs": FOURBAR, "reuse": False}, headers=headers)
     job_id = r.json()["jobID"]
     public = f"https://dexlab.example.org/kinematics/ogc/jobs/{job_id}"
     assert r.headers["location"] == public and r.json()["links"][0]["href"] == public

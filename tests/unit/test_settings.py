@@ -49,6 +49,8 @@ ENVIRONMENT: dict[str, tuple[str, Any]] = {
     "DEXLAB_SUBMIT_RATE_PER_MIN": ("6", 6),
     "DEXLAB_RESULT_TTL_S": ("3600", 3600.0),
     "DEXLAB_WORKER_NICE": ("0", 0),
+    "DEXLAB_REUSE": ("all", "all"),
+    "DEXLAB_BUILD_ID": ("ci-42", "ci-42"),
     "DEXLAB_HOST": ("0.0.0.0", "0.0.0.0"),
     "DEXLAB_PORT": ("9000", 9000),
     "DEXLAB_LOG_LEVEL": ("debug", "debug"),

@@ -26,6 +26,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from worker.contract import Artifact
+from worker.provenance.stamp import NPZ_DESCRIPTION_ENTRIES, NPZ_MEDIA_TYPE
 
 __all__ = [
     "CSV_MEDIA_TYPE",
@@ -41,13 +42,10 @@ __all__ = [
 ]
 
 CSV_MEDIA_TYPE = "text/csv"
-NPZ_MEDIA_TYPE = "application/x-npz"
 #: Rows formatted per block, to bound the temporary strings on large tables.
 CSV_BLOCK_ROWS = 131_072
 #: The unit of a pure number (a ratio, an index, a count, a flag).
 DIMENSIONLESS = "-"
-#: The NPZ entries that describe the others (JSON strings).
-NPZ_DESCRIPTION_ENTRIES = ("axes", "units", "metadata")
 #: A CSV column name: a quantity and its unit in brackets.
 _COLUMN = re.compile(r"^[A-Za-z][A-Za-z0-9_]* \[[^\[\],\n]+\]$")
 

@@ -40,7 +40,8 @@ class ArtifactIndex(SqlConnector):
         """Best-effort clean-up of bytes no index row points at (logged, never raised:
         what is left is found again by the next clean-up of this job)."""
         try:
-            self._drop_artifact_data(job_id, keep_attempt)
+            held = self._held_attempt(job_id)  # bytes other jobs' rows read stay
+            self._drop_artifact_data(job_id, held if keep_attempt is None else keep_attempt)
         except Exception:
             log.warning("could not remove unused artifact data of job %s", job_id, exc_info=True)
 
@@ -180,7 +181,8 @@ class ArtifactIndex(SqlConnector):
     def _artifact_rows(self, conn: Conn, job_id: str) -> list[StoredArtifact]:
         rows = self._all(
             conn,
-            "SELECT name, media_type, size, title, attempt, etag FROM artifact_index "
+            "SELECT name, media_type, size, title, attempt, etag, "
+            "COALESCE(holder, job_id) AS holder FROM artifact_index "
             "WHERE job_id = ? ORDER BY ord",
             (job_id,),
         )
@@ -189,6 +191,7 @@ class ArtifactIndex(SqlConnector):
                 ArtifactInfo(r["name"], r["media_type"], int(r["size"]), r["title"]),
                 r["attempt"],
                 r["etag"],
+                r["holder"],
             )
             for r in rows
         ]
@@ -204,7 +207,7 @@ class ArtifactIndex(SqlConnector):
 
     def artifact_chunks(self, job_id: str, stored: StoredArtifact) -> Iterator[bytes]:
         """The artifact's bytes, about 1 MiB at a time."""
-        return self._artifact_data(job_id, stored.attempt, stored.info.name)
+        return self._artifact_data(stored.holder or job_id, stored.attempt, stored.info.name)
 
     def get_artifact(self, job_id: str, name: str) -> Artifact | None:
         """The whole artifact in memory (for tests and small files; the API streams)."""

@@ -14,7 +14,7 @@ The roles, and the methods each holds:
   fail, expire_leases_of, split, children, mark_dispatched, undispatched,
   take_overdue, accepted_count.
 - :class:`ResultsPort`: complete, get_result, child_results, artifact,
-  artifact_chunks, get_artifact.
+  artifact_chunks, get_artifact, reusable, invalidate_reuse.
 - :class:`KeysPort`: create_key, seed_key, revoke_key, api_keys, record_key_use,
   shared_secret.
 - :class:`RetentionPort`: expire_jobs, forget_expired, expired_at.
@@ -254,6 +254,13 @@ class ResultsPort(Protocol):
 
     def get_artifact(self, job_id: str, name: str) -> Artifact | None:
         """The whole artifact in memory (small files and tests; the API streams)."""
+
+    def reusable(self, new: NewJob) -> bool:
+        """Whether a stored result would answer ``new`` now."""
+
+    def invalidate_reuse(self, process_id: str, result_key: str | None = None) -> int:
+        """Stop the stored results of ``process_id`` (of ``result_key`` only, if given)
+        from being reused, deleting no job; how many were reusable."""
 
 
 class KeysPort(Protocol):

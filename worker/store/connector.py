@@ -25,7 +25,7 @@ from __future__ import annotations
 
 import threading
 from abc import ABC, abstractmethod
-from collections.abc import Iterator, Mapping, Sequence
+from collections.abc import Iterable, Iterator, Mapping, Sequence
 from contextlib import AbstractContextManager, suppress
 from typing import TYPE_CHECKING, Any, ClassVar
 
@@ -33,7 +33,7 @@ from worker.contract import JobRecord, JobStatus
 from worker.store.retry import Fault, Outage
 
 if TYPE_CHECKING:
-    from worker.store.records import Claim, StoredArtifact
+    from worker.store.records import Claim, NewJob, StoredArtifact
 
 __all__ = ["Conn", "Row", "SqlConnector", "ThreadConnections"]
 
@@ -229,3 +229,12 @@ class SqlConnector(ABC):
         # worker.store.artifact_index
         def _artifact_rows(self, conn: Conn, job_id: str) -> list[StoredArtifact]: ...
         def _discard_artifact_data(self, job_id: str, keep_attempt: int | None = None) -> None: ...
+
+        # worker.store.reuse
+        def _reuse_source(self, conn: Conn, new: NewJob, now: float) -> Row: ...
+        def _insert_reused(
+            self, conn: Conn, new: NewJob, job_id: str, source: Row, now: float
+        ) -> None: ...
+        def _held_attempt(self, job_id: str) -> int | None: ...
+        def _holders(self, conn: Conn, job_ids: Iterable[str]) -> set[str]: ...
+        def _drop_unreferenced(self, holders: Iterable[str]) -> None: ...

@@ -20,6 +20,7 @@ import json
 import time
 import uuid
 from collections.abc import Iterator, Mapping, Sequence
+from dataclasses import replace
 from typing import Any
 
 from worker.contract import ChildEnd, JobStatus
@@ -67,30 +68,44 @@ class FanOut(SqlConnector):
             if parent["status"] != _RUNNING or parent["lease_token"] != lease_token:
                 return None
             ids = [str(uuid.uuid4()) for _ in children]
+            placed = [replace(c, owner=parent["owner"], retention_s=parent["retention_s"],
+                              parent_id=job_id) for c in children]  # fmt: skip
+            # A chunk of a stored result key is answered by it (worker.store.reuse).
+            computed = []
+            for child_id, child in zip(ids, placed, strict=True):
+                source = self._reuse_source(conn, child, now)
+                if source is None:
+                    computed.append((child_id, child))
+                else:
+                    self._insert_reused(conn, child, child_id, source, now)
             conn.cursor().executemany(
                 self._sql(
                     "INSERT INTO jobs (job_id, process_id, status, inputs, created, updated, "
                     "max_attempts, time_limit_s, message, owner, cheap, retention_s, "
-                    "parent_id) VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, 0, ?, ?)"
+                    "parent_id, result_key, shareable, reuse_scope) "
+                    "VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, 0, ?, ?, ?, ?, ?)"
                 ),
                 [
                     (child_id, child.process_id, _ACCEPTED, json.dumps(dict(child.inputs)), now,
-                     now, child.max_attempts, child.time_limit_s, "queued", parent["owner"],
-                     parent["retention_s"], job_id)
-                    for child_id, child in zip(ids, children, strict=True)
+                     now, child.max_attempts, child.time_limit_s, "queued", child.owner,
+                     child.retention_s, job_id, child.result_key, 1 if child.share else 0,
+                     child.reuse)
+                    for child_id, child in computed
                 ],
             )  # fmt: skip
-            self._tally_all(conn, [(c.process_id, "submitted", "", 0.0) for c in children])
+            self._tally_all(conn, [(c.process_id, "submitted", "", 0.0) for _, c in computed])
+            reused = len(ids) - len(computed)
             self._exec(
                 conn,
-                "UPDATE jobs SET phase = 'waiting', children_total = ?, children_done = 0, "
+                "UPDATE jobs SET phase = 'waiting', children_total = ?, children_done = ?, "
                 "children_failed = 0, partial_ok = ?, lease_token = NULL, lease_expires = NULL,"
-                " progress = 0, updated = ?, message = ? WHERE job_id = ?",
-                (len(ids), 1 if allow_partial else 0, now,
-                 f"waiting for {len(ids)} chunks", job_id),
+                " progress = ?, updated = ?, message = ? WHERE job_id = ?",
+                (len(ids), reused, 1 if allow_partial else 0, 100.0 * reused / max(len(ids), 1),
+                 now, f"waiting for {len(computed)} chunks" + (
+                     f" ({reused} reused)" if reused else ""), job_id),
             )  # fmt: skip
-            if not ids:  # nothing to wait for: assemble at once
-                self._queue_assembly(conn, job_id, 0, now)
+            if not computed:  # nothing to wait for: assemble at once
+                self._queue_assembly(conn, job_id, len(ids), now)
         return ids
 
     def _child_ids(self, conn: Conn, job_id: str) -> list[str]:

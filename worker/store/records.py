@@ -9,7 +9,7 @@ from __future__ import annotations
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from datetime import datetime
-from typing import Any
+from typing import Any, Literal
 
 from worker.contract import ArtifactInfo, JobRecord, JobStatus
 
@@ -50,6 +50,8 @@ class StoredArtifact:
     info: ArtifactInfo
     attempt: int
     etag: str
+    #: The job whose stored bytes these are (another job's, for a job made by reuse).
+    holder: str = ""
 
 
 @dataclass(frozen=True)
@@ -130,6 +132,13 @@ class NewJob:
     #: The job that created this one for itself (None: a client's job).  Such work
     #: counts as its parent: quotas count only jobs without a parent.
     parent_id: str | None = None
+    #: The digest naming its computation (worker.provenance.build.result_key).
+    result_key: str | None = None
+    #: Whose stored results of the same key it may reuse: its owner's ("owner"), any
+    #: owner's shareable ones ("all"), or none (None: it is computed).
+    reuse: Literal["owner", "all"] | None = None
+    #: Whether jobs of other owners may reuse its result.
+    share: bool = True
 
 
 @dataclass(frozen=True)

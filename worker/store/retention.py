@@ -49,10 +49,11 @@ class Retention(SqlConnector):
         job_ids = [r["job_id"] for r in rows]
         if not job_ids:  # the usual answer: one indexed read, no write lock
             return []
-        for job_id in job_ids:
-            self._drop_artifact_data(job_id, None)
+        for job_id in job_ids:  # bytes other jobs' index rows read stay (worker.store.reuse)
+            self._drop_artifact_data(job_id, self._held_attempt(job_id))
         marks = ", ".join("?" for _ in job_ids)
         with self._write() as conn:
+            holders = self._holders(conn, job_ids)
             doomed = self._all(
                 conn,
                 f"SELECT job_id, owner, retention_s FROM jobs WHERE job_id IN ({marks}) "
@@ -72,6 +73,7 @@ class Retention(SqlConnector):
                 f"DELETE FROM jobs WHERE job_id IN ({marks}) AND expires <= ?",
                 (*job_ids, now),
             )
+        self._drop_unreferenced(holders | set(job_ids))
         return [r["job_id"] for r in doomed]
 
     @retrying

@@ -223,4 +223,26 @@ MIGRATIONS: tuple[tuple[int, tuple[str, ...]], ...] = (
             "CREATE INDEX jobs_parent ON jobs (parent_id, seq)",
         ),
     ),
+    (
+        9,
+        # Reuse (worker.store.reuse): each job's `result_key` (worker.provenance.build),
+        # whether another owner may reuse its result (`shareable`), whether it may be
+        # reused at all (`reusable`: an admin's invalidation clears it), and, for a job
+        # created by reuse, the job that computed its result (`reused_from`) and whether
+        # that job was this job's owner's (`reused_own`); the scope its submission
+        # asked reuse in (`reuse_scope`: 'owner', 'all', NULL: none), which a design
+        # study's chunks inherit.  An index row's `holder` is the job whose stored bytes
+        # it reads (NULL: its own).
+        (
+            "ALTER TABLE jobs ADD COLUMN result_key TEXT",
+            "ALTER TABLE jobs ADD COLUMN shareable INTEGER NOT NULL DEFAULT 1",
+            "ALTER TABLE jobs ADD COLUMN reusable INTEGER NOT NULL DEFAULT 1",
+            "ALTER TABLE jobs ADD COLUMN reused_from TEXT",
+            "ALTER TABLE jobs ADD COLUMN reused_own INTEGER NOT NULL DEFAULT 0",
+            "ALTER TABLE jobs ADD COLUMN reuse_scope TEXT",
+            "CREATE INDEX jobs_result_key ON jobs (result_key, status, seq)",
+            "ALTER TABLE artifact_index ADD COLUMN holder TEXT",
+            "CREATE INDEX artifact_index_holder ON artifact_index (holder)",
+        ),
+    ),
 )

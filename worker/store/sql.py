@@ -42,6 +42,7 @@ from worker.store.quotas import Quotas
 from worker.store.records import JobFilter, JobPage, NewJob
 from worker.store.retention import Retention
 from worker.store.retry import retrying
+from worker.store.reuse import Reuse
 from worker.store.scheduling import Scheduling
 from worker.store.schema import MIGRATIONS
 from worker.store.tallies import Tallies
@@ -90,6 +91,7 @@ class SqlJobStore(
     Callbacks,
     ApiKeys,
     Tallies,
+    Reuse,
 ):
     """A :class:`worker.store.base.JobStore` over a DB-API connection."""
 
@@ -147,6 +149,11 @@ class SqlJobStore(
             children_total=row["children_total"],
             children_done=row["children_done"],
             children_failed=row["children_failed"],
+            result_key=row["result_key"],
+            reused_from=row["reused_from"],
+            reused_own=bool(row["reused_own"]),
+            reuse_scope=row["reuse_scope"],
+            shareable=bool(row["shareable"]),
         )
 
     def create_job(self, new: NewJob) -> tuple[JobRecord, bool]:
@@ -166,14 +173,19 @@ class SqlJobStore(
             if replayed is not None:  # an idempotent replay makes nothing, counts nothing
                 return replayed, False
             self._admit(conn, new, now)
+            source = self._reuse_source(conn, new, now)
+            if source is not None:  # answered at once by a stored result (worker.store.reuse)
+                self._insert_reused(conn, new, job_id, source, now)
+                return self._record(conn, self._job_row(conn, job_id)), True
             # ON CONFLICT DO NOTHING: a concurrent submit with this idempotency key that
             # got in first (where submissions are not serialised) is found below.
             inserted = self._exec(
                 conn,
                 """INSERT INTO jobs (job_id, process_id, status, inputs, created, updated,
                        max_attempts, time_limit_s, idempotency, request_hash, message, owner,
-                       cheap, retention_s, parent_id)
-                   VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?) ON CONFLICT DO NOTHING""",
+                       cheap, retention_s, parent_id, result_key, shareable, reuse_scope)
+                   VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)
+                   ON CONFLICT DO NOTHING""",
                 (
                     job_id,
                     new.process_id,
@@ -190,6 +202,9 @@ class SqlJobStore(
                     1 if new.cheap else 0,
                     new.retention_s,
                     new.parent_id,
+                    new.result_key,
+                    1 if new.share else 0,
+                    new.reuse,
                 ),
             )
             if inserted.rowcount == 1:
@@ -290,6 +305,7 @@ class SqlJobStore(
             if row["status"] != JobStatus.DISMISSED.value:
                 unfinished = row["status"] in (_ACCEPTED, _RUNNING)
                 self._tally_finish(conn, row, JobStatus.DISMISSED, now)
+                holders = self._holders(conn, [job_id])
                 self._exec(conn, "DELETE FROM artifact_index WHERE job_id = ?", (job_id,))
                 self._exec(
                     conn,
@@ -301,8 +317,11 @@ class SqlJobStore(
                 if unfinished:  # its unfinished chunks stop; its parent counts the end
                     self._dismiss_children(conn, job_id, now, "dismissed with its study")
                     self._child_ended(conn, job_id, JobStatus.DISMISSED, None, now)
+            else:
+                holders = set()
             record = self._record(conn, self._job_row(conn, job_id))
         self._discard_artifact_data(job_id)
+        self._drop_unreferenced(holders)
         return record
 
     @retrying

@@ -101,6 +101,16 @@ def test_the_paper_errata_stand_out(pages: Pages) -> None:
     assert 'class="erratum"' not in without and "Paper erratum" not in without
 
 
+def test_the_provenance_has_its_own_section(pages: Pages) -> None:
+    provenance = {"backend": "local-pool/sqlite", "result_key": "k" * 64}
+    result = {"grashof": "grashof", "notes": [], "provenance": provenance, "result_hash": "h" * 64}
+    html = page_of(pages, job(JobStatus.SUCCESSFUL), result)
+    section = html.split('id="provenance-title"', 1)[1]
+    assert "local-pool/sqlite" in section and "h" * 64 in section
+    assert '<th scope="row">provenance</th>' not in html
+    assert 'id="provenance-title"' not in page_of(pages, job(JobStatus.SUCCESSFUL), {"notes": []})
+
+
 def test_results_show_each_number_with_its_symbol_and_unit(pages: Pages) -> None:
     """Fig 3 in cm: lengths in cm (a nested object's, a list's, a table column's), its
     Grashof margin with its symbol, pure numbers without a unit, meanings on hover."""

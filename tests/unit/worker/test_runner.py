@@ -120,14 +120,38 @@ def test_successful_job_stores_result_notes_and_artifacts(store: JobStore) -> No
     run_one(store)
     job = store.get_job(job_id)
     assert job is not None and job.status is JobStatus.SUCCESSFUL
-    assert store.get_result(job_id) == {"square": 9.0, "notes": ["a note"], "paper_errata": []}
+    result = store.get_result(job_id)
+    assert result is not None
+    assert {k: result[k] for k in ("square", "notes", "paper_errata")} == {
+        "square": 9.0, "notes": ["a note"], "paper_errata": [],
+    }  # fmt: skip
     assert [a.name for a in job.artifacts] == ["square.csv"]
+
+
+def test_a_result_says_what_computed_it(store: JobStore) -> None:
+    """provenance names the process, build, libraries, backend and result key; the hash
+    covers the values alone, so a second run of the same inputs hashes alike."""
+    first, second = submit(store, "square", {"x": 3}), submit(store, "square", {"x": 3})
+    run_one(store)
+    run_one(store)
+    one, two = store.get_result(first), store.get_result(second)
+    assert one is not None and two is not None
+    provenance = one["provenance"]
+    assert provenance["process"] == {"id": "square", "version": "1.0.0"}
+    assert provenance["backend"] == "local-pool/sqlite"
+    assert set(provenance["libraries"]) == {"python", "numpy", "scipy"}
+    assert provenance["dexlab"]["version"]
+    assert len(provenance["result_key"]) == 64 and len(one["result_hash"]) == 64
+    assert one["result_hash"] == two["result_hash"]
+    assert provenance == two["provenance"]
 
 
 def test_paper_errata_follow_the_notes_and_are_listed_apart(store: JobStore) -> None:
     job_id = submit(store, "paper-square", {"x": 3})
     run_one(store)
-    assert store.get_result(job_id) == {
+    result = store.get_result(job_id)
+    assert result is not None
+    assert {k: result[k] for k in ("square", "notes", "paper_errata")} == {
         "square": 9.0,
         "notes": ["a note", "another note", "the paper prints 10; it is 9"],
         "paper_errata": ["the paper prints 10; it is 9"],

@@ -35,7 +35,7 @@ def test_create_then_get_roundtrips(store: JobStore) -> None:
 def test_initialise_is_idempotent_and_keeps_jobs(store: JobStore) -> None:
     job, _ = store.create_job(new_job())
     store.initialise()
-    assert store.schema_version() == 8
+    assert store.schema_version() == 9
     assert store.get_job(job.job_id) is not None
 
 
