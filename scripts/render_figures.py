@@ -59,6 +59,10 @@ def main() -> None:
         "axes, every axis labelled with its unit, mathtext for symbols, contour lines",
         "broken only under their labels.",
         "",
+        "Contents:",
+        "",
+        *[f"- [{d.id}](#{d.id})" for d in default_registry()],
+        "",
     ]
     for definition in default_registry():
         captured.clear()

@@ -21,7 +21,7 @@ def _rows(
     table: list[tuple[float, float, float]], limits: list[tuple[float, float]] | None = None
 ) -> list[dict[str, Any]]:
     """(a, alpha_deg, d) per joint, with optional limits in degrees."""
-    rows = [{"a": a, "alpha_deg": alpha, "d": d} for a, alpha, d in table]
+    rows: list[dict[str, Any]] = [{"a": a, "alpha_deg": alpha, "d": d} for a, alpha, d in table]
     for row, limit in zip(rows, limits or [], strict=False):
         row["limits"] = list(limit)
     return rows
@@ -42,7 +42,7 @@ PUMA_560: dict[str, Any] = {
             (0.0, 0.0, 0.0),
         ],
         [(-160, 160), (-45, 225), (-225, 45), (-110, 170), (-100, 100), (-266, 266)],
-    ),  # fmt: skip
+    ),
     "convention": "standard",
 }
 
@@ -66,7 +66,7 @@ PANDA: dict[str, Any] = {
             (-1.0027, 215.0024),
             (-166.0031, 166.0031),
         ],
-    ),  # fmt: skip
+    ),
     "convention": "modified",
     "tool": {"xyz": [0.0, 0.0, 0.1034], "rpy_deg": [0.0, 0.0, -45.0]},
 }

@@ -40,7 +40,7 @@ SERIAL_INDICES_EXAMPLES = (
             "length_unit": "m",
             "characteristic_length": 0.5,
         },
-    ),  # fmt: skip
+    ),
     _example(
         "Panda (modified DH) at its ready pose",
         "A seven-joint redundant arm: manipulability sqrt(det(J Jᵀ)).",
@@ -49,7 +49,7 @@ SERIAL_INDICES_EXAMPLES = (
             "configurations": [[0, -17.2, 0, -126.1, 0, 108.9, 45]],
             "length_unit": "m",
         },
-    ),  # fmt: skip
+    ),
     _example(
         "Patel & Sobh's Example 1 arm (15, 14, 8) as a planar DH chain",
         "Task space (x, y, φ): a 3 × 3 Jacobian whose determinant is l1 l2 sin θ2.",
@@ -58,5 +58,5 @@ SERIAL_INDICES_EXAMPLES = (
             "configurations": [[0, 90, -90], [30, 60, 45]],
             "length_unit": "units",
         },
-    ),  # fmt: skip
+    ),
 )

@@ -16,7 +16,7 @@ from pydantic import Field, model_validator
 from worker.common.field_errors import field_error
 from worker.common.specs import FrozenSpec
 from worker.families.serial.kinematics.arm import DHRow, SerialArm, arm_from_dh, rpy_transform
-from worker.families.serial.kinematics.urdf import MAX_URDF_BYTES, UrdfProblem, arm_from_urdf
+from worker.families.serial.urdf_chain import MAX_URDF_BYTES, UrdfProblem, arm_from_urdf
 
 __all__ = ["MAX_JOINTS", "DHJoint", "Placement", "RobotSpec"]
 
@@ -96,8 +96,11 @@ class RobotSpec(FrozenSpec):
         description="standard: Rz(θ)·Tz(d)·Tx(a)·Rx(α) per row; modified (Craig): row i "
         "holds the a and α of the link before joint i.",
     )
-    urdf: str | None = Field(None, max_length=MAX_URDF_BYTES, description="A URDF document "
-                             "(plain URDF, not xacro; at most 256 KB; meshes ignored).")  # fmt: skip
+    urdf: str | None = Field(
+        None,
+        max_length=MAX_URDF_BYTES,
+        description="A URDF document (plain URDF, not xacro; at most 256 KB; meshes ignored).",
+    )
     base_link: str | None = Field(None, max_length=200, description="The URDF link the "
                                   "chain starts at.")  # fmt: skip
     tip_link: str | None = Field(None, max_length=200, description="The URDF link the chain "

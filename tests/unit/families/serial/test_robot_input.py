@@ -52,18 +52,26 @@ def test_a_prismatic_joint_needs_limits_and_a_configuration_one_value_a_joint() 
 @pytest.mark.parametrize(
     ("document", "words"),
     [
-        (urdf(joint("float", "floating", "a", "b") + joint("j", "revolute", "b", "c")),
-         ["'float'", "floating"]),
-        (urdf(joint("slide", "planar", "a", "b") + joint("j", "revolute", "b", "c")),
-         ["'slide'", "planar"]),
-        (urdf(joint("j1", "revolute", "a", "b") + joint("j2", "revolute", "b", "c",
-              "<mimic joint='j1'/>")), ["'j2'", "mimic"]),  # fmt: skip
+        (
+            urdf(joint("float", "floating", "a", "b") + joint("j", "revolute", "b", "c")),
+            ["'float'", "floating"],
+        ),
+        (
+            urdf(joint("slide", "planar", "a", "b") + joint("j", "revolute", "b", "c")),
+            ["'slide'", "planar"],
+        ),
+        (
+            urdf(
+                joint("j1", "revolute", "a", "b")
+                + joint("j2", "revolute", "b", "c", "<mimic joint='j1'/>")
+            ),
+            ["'j2'", "mimic"],
+        ),
         ("<robot xmlns:xacro='http://www.ros.org/wiki/xacro' name='r'/>", ["xacro"]),
-        ("<!DOCTYPE r [<!ENTITY x SYSTEM 'file:///etc/passwd'>]><robot name='&x;'/>",
-         ["DTD"]),
+        ("<!DOCTYPE r [<!ENTITY x SYSTEM 'file:///etc/passwd'>]><robot name='&x;'/>", ["DTD"]),
         ("not xml at all", ["not a URDF"]),
     ],
-)  # fmt: skip
+)
 def test_a_bad_urdf_names_the_joint(document: str, words: list[str]) -> None:
     [(field, message)] = problems({"urdf": document, "base_link": "a", "tip_link": "c"})
     assert field == "inputs.robot.urdf"
@@ -86,8 +94,8 @@ def test_urdf_defaults_axis_x_limits_zero_continuous_full_turn() -> None:
     assert PROCESS is not None
     document = urdf(joint("j1", "revolute", "a", "b", "<origin xyz='0 0 1'/>")
                     + joint("j2", "continuous", "b", "c", "<origin xyz='1 0 0'/>"))  # fmt: skip
-    spec = validate_inputs(PROCESS, {"robot": {"urdf": document, "base_link": "a",
-                                               "tip_link": "c"}, "configurations": [[0, 0]]})  # fmt: skip
+    robot = {"urdf": document, "base_link": "a", "tip_link": "c"}
+    spec = validate_inputs(PROCESS, {"robot": robot, "configurations": [[0, 0]]})
     arm = spec.arm()  # type: ignore[attr-defined]
     assert np.array_equal(arm.axes, [[1.0, 0.0, 0.0], [1.0, 0.0, 0.0]])
     assert arm.lower.tolist() == [0.0, -np.pi] and arm.upper.tolist() == [0.0, np.pi]

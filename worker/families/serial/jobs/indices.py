@@ -74,7 +74,7 @@ def run_serial_indices(spec: SerialIndicesSpec, ctx: JobContext) -> JobOutcome:
                 {"phi_deg": float(np.degrees(np.arctan2(tool[k, 1, 0], tool[k, 0, 0])))}
                 if arm.planar
                 else {}
-            ),  # fmt: skip
+            ),
             "jacobian": task[k].tolist(),
             "singular_values": sigma[k].tolist(),
             "manipulability": float(measure[k]),
@@ -84,21 +84,22 @@ def run_serial_indices(spec: SerialIndicesSpec, ctx: JobContext) -> JobOutcome:
         }
         for k in range(q.shape[0])
     ]
+    summary: dict[str, Any] = {
+        "configurations": len(poses),
+        "manipulability_min": float(measure.min()),
+        "manipulability_max": float(measure.max()),
+        "inverse_condition_min": float(kappa.min()),
+        "inverse_condition_mean": float(kappa.mean()),
+        "outside_limits": int(sum(not p["within_limits"] for p in poses)),
+    }
     result = {
         "arm": arm_description(spec.robot, arm),
         "length_unit": spec.length_unit,
         "characteristic_length": spec.characteristic_length,
         "poses": poses,
-        "summary": {
-            "configurations": len(poses),
-            "manipulability_min": float(measure.min()),
-            "manipulability_max": float(measure.max()),
-            "inverse_condition_min": float(kappa.min()),
-            "inverse_condition_mean": float(kappa.mean()),
-            "outside_limits": int(sum(not p["within_limits"] for p in poses)),
-        },
+        "summary": summary,
     }
-    notes = _notes(spec, arm, result["summary"])
+    notes = _notes(spec, arm, summary)
     artifacts: tuple[Artifact, ...] = ()
     if spec.plots:
         progress.report(60.0, "plots")

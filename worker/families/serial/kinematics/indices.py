@@ -43,13 +43,15 @@ def _scaled(jac: FloatArray, characteristic_length: float | None) -> FloatArray:
 
 def singular_values(jac: FloatArray, characteristic_length: float | None = None) -> FloatArray:
     """Singular values, largest first: (..., min(m, n))."""
-    return np.linalg.svd(_scaled(jac, characteristic_length), compute_uv=False)
+    sigma = np.linalg.svd(_scaled(jac, characteristic_length), compute_uv=False)
+    return np.asarray(sigma, dtype=np.float64)
 
 
 def manipulability(jac: FloatArray) -> FloatArray:
     """Yoshikawa's measure (...,): the product of the singular values of the task
     Jacobian (sqrt(det(J Jᵀ)) for n >= m, else sqrt(det(Jᵀ J)))."""
-    return np.prod(singular_values(jac), axis=-1)
+    product: FloatArray = np.prod(singular_values(jac), axis=-1)
+    return product
 
 
 def inverse_condition(jac: FloatArray, characteristic_length: float | None = None) -> FloatArray:

@@ -58,17 +58,17 @@ def arm_figure(
             ax.plot(*chains[k, :, :2].T, "-o", color=colour, ms=4, label=f"configuration {k}")
             ax.plot(*(shapes[k] + chains[k, -1, :2]).T, "--", color=colour, lw=0.9)
         ax.set_aspect("equal", adjustable="datalim")
-        ax.set_xlabel(f"$x$ ({length_unit})")
-        ax.set_ylabel(f"$y$ ({length_unit})")
+        ax.set_xlabel(f"$x$ [{length_unit}]")
+        ax.set_ylabel(f"$y$ [{length_unit}]")
     else:
         ax = fig.add_subplot(projection="3d")
         for k, colour in enumerate(colours):
             ax.plot(*chains[k].T, "-o", color=colour, ms=3, label=f"configuration {k}")
             cloud = shapes[k] + chains[k, -1]
             ax.scatter(*cloud.T, s=0.5, color=colour, alpha=0.35)
-        ax.set_xlabel(f"$x$ ({length_unit})")
-        ax.set_ylabel(f"$y$ ({length_unit})")
-        ax.set_zlabel(f"$z$ ({length_unit})")
+        ax.set_xlabel(f"$x$ [{length_unit}]")
+        ax.set_ylabel(f"$y$ [{length_unit}]")
+        ax.set_zlabel(f"$z$ [{length_unit}]")
         ax.set_box_aspect((1, 1, 1))
     ax.set_title(
         f"{arm.joints}-joint arm: configurations and translational manipulability "
