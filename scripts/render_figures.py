@@ -19,9 +19,9 @@ sys.path.insert(0, str(ROOT))
 from matplotlib.figure import Figure  # noqa: E402
 
 from worker.contract import Artifact  # noqa: E402
-from worker.registry import default_registry  # noqa: E402
+from worker.registry import default_registry, family_packages  # noqa: E402
 
-FAMILIES = ("planar_serial", "planar_parallel", "chains", "spherical_parallel")
+FAMILIES = tuple(package.FAMILY.name for package in family_packages())
 DPI = 80
 OUT = ROOT / "docs" / "figures"
 
@@ -58,6 +58,10 @@ def main() -> None:
         "(`tests/figure_check.py`): no overlapping or clipped text, colour bars beside their",
         "axes, every axis labelled with its unit, mathtext for symbols, contour lines",
         "broken only under their labels.",
+        "",
+        "Contents:",
+        "",
+        *[f"- [{d.id}](#{d.id})" for d in default_registry()],
         "",
     ]
     for definition in default_registry():

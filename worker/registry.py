@@ -15,7 +15,7 @@ from collections.abc import Sequence
 
 import worker.families
 import worker.studies
-from worker.families import chains, planar_parallel, planar_serial, spherical_parallel
+from worker.families import chains, planar_parallel, planar_serial, serial, spherical_parallel
 from worker.processes import FamilyPackage, ProcessRegistry
 from worker.studies.chunk import study_chunk
 from worker.studies.process import design_study
@@ -32,7 +32,7 @@ __all__ = [
 def family_packages() -> tuple[FamilyPackage, ...]:
     """The families dexlab ships, in the order ``GET /v1/processes`` lists their
     processes: a new family is a folder under ``worker/families/`` and one entry here."""
-    return (planar_serial, planar_parallel, chains, spherical_parallel)
+    return (planar_serial, planar_parallel, chains, spherical_parallel, serial)
 
 
 def build_registry(

@@ -19,9 +19,9 @@ from tests.unit.families.conftest import RecordingContext
 from tests.unit.families.test_data_files import SMALL
 from worker.contract import Artifact
 from worker.processes import ProcessDefinition
-from worker.registry import default_registry
+from worker.registry import default_registry, family_packages
 
-FAMILIES = ("planar_serial", "planar_parallel", "chains", "spherical_parallel")
+FAMILIES = tuple(package.FAMILY.name for package in family_packages())
 DEFINITIONS = list(default_registry())
 EXAMPLES = [
     pytest.param(d, i, id=f"{d.id}[{i}]") for d in DEFINITIONS for i in range(len(d.examples))

@@ -34,7 +34,7 @@ def test_a_family_exports_its_processes_and_nothing_else(family: str) -> None:
 
 
 def test_the_registry_holds_every_familys_processes_in_family_order() -> None:
-    order = ("planar_serial", "planar_parallel", "chains", "spherical_parallel")
+    order = ("planar_serial", "planar_parallel", "chains", "spherical_parallel", "serial")
     expected = [
         d.id
         for family in order

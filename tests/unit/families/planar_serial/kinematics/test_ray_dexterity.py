@@ -182,8 +182,12 @@ def test_on_a_piece_d_z_follows_its_roots(data: st.DataObject, links, limits_rad
         ray.conditions, ray.polynomials, pieces.coefficient[[index]], np.array([x]),
         np.array([y]), anchor, np.array([True]),
     )  # fmt: skip
+    # Beside a double root (where two roots meet at a piece's edge) rounding of order eps
+    # in the discriminant moves the roots by sqrt(eps) ~ 1.5e-8: an arc of that length
+    # may open or close there, so d_z may stray from the bounds by about that much.
+    slack = 1e-7
     if x > lo:  # at a breakpoint d_z need not continue the piece
-        assert lower[0] <= values.min() + 1e-9 and values.max() <= upper[0] + 1e-9
+        assert lower[0] <= values.min() + slack and values.max() <= upper[0] + slack
 
 
 # -- hard cases ----------------------------------------------------------------------

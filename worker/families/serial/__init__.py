@@ -1,0 +1,87 @@
+"""Serial arms of the user's own (docs/methods/serial.md): DH tables or URDF chains.
+
+``serial-indices``: pose, Jacobian and dexterity indices of given joint configurations.
+
+Importing this package builds the process definitions and nothing else: the job modules
+(matplotlib figures) and the URDF parser are imported when needed.
+"""
+
+from __future__ import annotations
+
+from worker.contract import JobContext, JobOutcome
+from worker.families.serial.costs import (
+    INDICES_COST_LIMIT,
+    INDICES_SYNC_COST_LIMIT,
+    TIME_LIMIT_S,
+    indices_cost,
+)
+from worker.families.serial.examples import SERIAL_INDICES_EXAMPLES
+from worker.families.serial.result_paths import SERIAL_INDICES_RESULT_PATHS
+from worker.families.serial.specs import MAX_CONFIGURATIONS, SerialIndicesSpec
+from worker.processes import FamilyInfo, ProcessDefinition, figure_files
+
+__all__ = ["FAMILY", "PROCESSES", "SERIAL_INDICES"]
+
+
+def _run_serial_indices(spec: SerialIndicesSpec, ctx: JobContext) -> JobOutcome:
+    # lazy: the job module (matplotlib) loads when a job runs, not with the registry
+    from worker.families.serial.jobs.indices import run_serial_indices
+
+    return run_serial_indices(spec, ctx)
+
+
+SERIAL_INDICES = ProcessDefinition(
+    id="serial-indices",
+    title="Serial arm (DH or URDF): pose, Jacobian and dexterity indices",
+    method_doc="serial",
+    result_paths=SERIAL_INDICES_RESULT_PATHS,
+    files=figure_files("arm", "The arm and its manipulability ellipsoids"),
+    description=(
+        "Your own serial arm, as a DH table (standard or modified) or a URDF chain from "
+        "base_link to tip_link (docs/methods/serial.md), at given joint configurations "
+        "(degrees for revolute joints, length_unit for prismatic ones): per configuration "
+        "the tool's position and rotation in the base frame, the geometric Jacobian about "
+        "the tool point (rows [linear; angular], or [x, y, phi] for a planar arm), its "
+        "singular values, Yoshikawa's manipulability, the inverse condition number "
+        "(optionally with the linear rows divided by a characteristic length) and each "
+        "joint's distance to its limits; a figure of the arm with its manipulability "
+        f"ellipsoids. Cost: configurations x joints, at most {INDICES_COST_LIMIT:,} "
+        f"({MAX_CONFIGURATIONS:,} configurations); up to {INDICES_SYNC_COST_LIMIT:,} "
+        "answered synchronously with 'Prefer: wait=N'."
+    ),
+    inputs_model=SerialIndicesSpec,
+    run=_run_serial_indices,
+    examples=SERIAL_INDICES_EXAMPLES,
+    outputs={
+        "arm": "The arm: source (dh or urdf), convention, joints, joint_names, joint_types, "
+        "planar, task_space.",
+        "length_unit": "The length unit.",
+        "characteristic_length": "The length dividing the linear rows (null: unscaled).",
+        "poses": "Per configuration: configuration, position, rotation, phi_deg (planar), "
+        "jacobian, singular_values, manipulability, inverse_condition, limit_distance, "
+        "within_limits.",
+        "summary": "configurations, manipulability_min/max, inverse_condition_min/mean, "
+        "outside_limits.",
+    },
+    cost=indices_cost,
+    cost_limit=INDICES_COST_LIMIT,
+    cost_unit="configurations x joints",
+    sync_cost_limit=INDICES_SYNC_COST_LIMIT,
+    seconds_per_cost=2e-6,
+    seconds_per_run=0.02,
+    time_limit_s=TIME_LIMIT_S,
+)
+
+#: Who this family is: the tag its operations are listed under, and its sources.
+FAMILY = FamilyInfo(
+    name="serial",
+    tag="Serial arms of your own (DH or URDF)",
+    description=(
+        "Any serial arm given as a DH table or a URDF: poses, Jacobians and dexterity "
+        "indices, checked against the Robotics Toolbox for Python."
+    ),
+    paper="the arm's published DH table",
+)
+
+#: This family's processes, in the order GET /v1/processes lists them.
+PROCESSES = (SERIAL_INDICES,)

@@ -1,0 +1,1 @@
+"""The serial-arm jobs (loaded when a job runs: matplotlib)."""

@@ -1,0 +1,1 @@
+"""Figures of the serial-arm jobs (matplotlib ``Figure``, never pyplot)."""

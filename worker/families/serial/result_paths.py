@@ -1,0 +1,38 @@
+"""The numeric result paths of the serial-arm processes: units, symbols, meanings
+(:mod:`worker.result_paths`; lengths in the job's ``length_unit``)."""
+
+from __future__ import annotations
+
+from worker.result_paths import ResultPathInfo as R
+
+__all__ = ["SERIAL_INDICES_RESULT_PATHS"]
+
+SERIAL_INDICES_RESULT_PATHS = (
+    R("arm.joints", "-", "$n$", "Movable joints."),
+    R("characteristic_length", "length", "$L$", "The length dividing the linear rows for "
+      "the inverse condition number (null: unscaled)."),
+    R("poses[].configuration[]", "mixed", r"$q_i$", "Joint values as given: degrees "
+      "(revolute), length_unit (prismatic)."),
+    R("poses[].position[]", "length", r"$p$", "The tool point in the base frame."),
+    R("poses[].rotation[][]", "-", "$R$", "The tool frame's rotation matrix (rows)."),
+    R("poses[].phi_deg", "deg", r"$\phi$", "A planar arm's tool angle about z."),
+    R("poses[].jacobian[][]", "mixed", "$J$", "The task Jacobian about the tool point: "
+      "linear rows per radian (length_unit) or per length unit (pure), angular rows per "
+      "radian (pure) or 0."),
+    R("poses[].singular_values[]", "mixed", r"$\sigma_i$", "Singular values of the task "
+      "Jacobian (of the scaled one with a characteristic length), largest first."),
+    R("poses[].manipulability", "mixed", "$w$", "Yoshikawa's manipulability: the product of "
+      "the task Jacobian's singular values."),
+    R("poses[].inverse_condition", "-", r"$1/\kappa$", "sigma_min / sigma_max of the task "
+      "Jacobian (scaled with a characteristic length)."),
+    R("poses[].limit_distance[]", "mixed", r"$\Delta q_i$", "Per joint, the distance to "
+      "the nearer limit: degrees (revolute), length_unit (prismatic); negative outside."),
+    R("summary.configurations", "-", "", "Configurations evaluated."),
+    R("summary.manipulability_min", "mixed", r"$w_{\min}$", "The least manipulability."),
+    R("summary.manipulability_max", "mixed", r"$w_{\max}$", "The largest manipulability."),
+    R("summary.inverse_condition_min", "-", r"$1/\kappa_{\min}$", "The least inverse "
+      "condition number."),
+    R("summary.inverse_condition_mean", "-", r"$1/\kappa$", "The mean inverse "
+      "condition number."),
+    R("summary.outside_limits", "-", "", "Configurations outside the joint limits."),
+)  # fmt: skip
