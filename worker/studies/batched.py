@@ -112,7 +112,8 @@ def evaluate_batched(
     over_limit = choice.template_cost > process.cost_limit
     for first in range(0, count, BATCH):
         last = min(first + BATCH, count)
-        block = choice.plan.evaluate(spec.designs.block(start + first, start + last))
+        with np.errstate(all="ignore"):  # a design out of range is the kernel's to refuse
+            block = choice.plan.evaluate(spec.designs.block(start + first, start + last))
         values = _objectives(block, declared, paths)
         refused = np.asarray(block.refused)
         for k, refusal in enumerate(block.refusals):

@@ -21,6 +21,8 @@ from collections.abc import Callable, Mapping
 from functools import partial
 from typing import Any, TypeVar
 
+import numpy as np
+
 from worker.contract import ChildEnd, JobContext, JobOutcome, JobStatus
 from worker.errors import InvalidInputs
 from worker.input_validation import validate_inputs
@@ -146,7 +148,8 @@ def _unreported_by_kernel(
     an index past the end of a list the kernel reports (``chains[7].P`` of five chains)
     is a path the process does not report."""
     assert choice.plan is not None
-    block = choice.plan.evaluate(spec.designs.block(0, 1))
+    with np.errstate(all="ignore"):  # a design out of range is the kernel's to refuse
+        block = choice.plan.evaluate(spec.designs.block(0, 1))
     problems = []
     for name in spec.objectives:
         entry = objective_entry(process, name)

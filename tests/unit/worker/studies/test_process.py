@@ -180,3 +180,22 @@ def test_a_per_design_study_is_priced_by_its_dearest_design_not_its_first() -> N
     assert study_cost(study) == pytest.approx(3 * dearest * 1e6, abs=1)
     cheap_first = 5 * 5 / process.cost_limit
     assert study_cost(study) > 100 * 3 * cheap_first * 1e6
+
+
+def test_a_design_out_of_every_range_is_the_kernels_to_refuse_not_an_overflow() -> None:
+    """A sampled chain length of 1e300 overflowed in the kernel's squares while the
+    submission checked the objectives (a 500 under warnings-as-errors): the kernel
+    evaluates it quietly and the design is refused later as out of range."""
+    import warnings
+
+    study = StudySpec.model_validate({
+        "process": "chain-parallelism",
+        "fixed": {"chains": [{"name": "a", "lengths": [15, 15, 15, 15]},
+                             {"name": "b", "lengths": [20, 10, 20, 10]}]},
+        "sample": {"method": "sobol", "count": 1, "seed": 0,
+                   "bounds": {"chains[0].lengths[0]": [1e300, 1e300]}},
+        "objectives": {"chains[0].Q": "min"},
+    })  # fmt: skip
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        dry_check(study)

@@ -50,9 +50,17 @@ def exact_sums(values: FloatArray) -> FloatArray:
     return np.fromiter(map(math.fsum, rows.tolist()), dtype=np.float64, count=len(rows))
 
 
+def _fourth_power(value: float) -> float:
+    """x**4 as Python computes it, inf past the largest float (Python raises there)."""
+    try:
+        return value**4
+    except OverflowError:  # a design out of range: refused by the kernel's checks
+        return math.inf
+
+
 def _fourth_powers(values: FloatArray) -> FloatArray:
     """x**4 as Python computes it (libm's pow; numpy's power may round differently)."""
-    return np.fromiter((v**4 for v in values.tolist()), dtype=np.float64, count=values.size)
+    return np.fromiter(map(_fourth_power, values.tolist()), dtype=np.float64, count=values.size)
 
 
 def spread_too_far(lengths: FloatArray, max_ratio: float) -> BoolArray:
