@@ -149,6 +149,7 @@ def create_app(settings: Settings, *, registry: ProcessRegistry | None = None) -
             {"name": "processes", "description": "What dexlab runs; the generic execute."},
             *family_tag_documents(registry),
             {"name": "jobs", "description": "Status, results, artifacts, dismissal."},
+            {"name": "reuse", "description": "Admins: stop stored results being reused."},
             {"name": "health", "description": "Liveness and readiness probes; metrics."},
             {
                 "name": "OGC API – Processes",

@@ -178,7 +178,7 @@ async def test_landing_conformance_and_processes(pool: httpx.AsyncClient) -> Non
     listing = (await pool.get("/ogc/processes", params={"limit": 100})).json()
     OgcProcessList.model_validate(listing)
     rels_of_list = [link["rel"] for link in listing["links"]]
-    assert len(listing["processes"]) == 11 and rels_of_list == ["self", "alternate"]
+    assert len(listing["processes"]) == 12 and rels_of_list == ["self", "alternate"]
     page = (await pool.get("/ogc/processes", params={"limit": 4, "offset": 4})).json()
     assert [p["id"] for p in page["processes"]] == [p["id"] for p in listing["processes"][4:8]]
     (after,) = [link for link in page["links"] if link["rel"] == "next"]

@@ -89,7 +89,7 @@ def test_edit_and_run_again(
         assert new_id != job_id
         assert finished(server, new_id)["status"] == "successful"
         page.goto(f"{server.base_url}/v1/jobs/{new_id}")
-        ran_with = page.locator("pre.json").inner_text()
+        ran_with = page.locator("pre.json").last.inner_text()  # after the provenance block
         assert "40.0" in ran_with and "25.0" not in ran_with
         if javascript:
             page.screenshot(path=str(shots / "job-page-rerun.png"), full_page=True)
