@@ -17,6 +17,7 @@ import pytest
 
 from service.app import create_app
 from service.config import Settings
+from tests.browser import chromium, screenshot_dir
 from tests.integration.servers import BACKENDS, Deployment, backend_env, deployment
 
 pytestmark = pytest.mark.integration
@@ -55,6 +56,20 @@ async def asgi_client(backend: str, tmp_path: Path) -> AsyncIterator[httpx.Async
             transport = httpx.ASGITransport(app=app)
             async with httpx.AsyncClient(transport=transport, base_url="http://dexlab.test") as c:
                 yield c
+
+
+@pytest.fixture(scope="module")
+def browser() -> Iterator[Any]:
+    """A headless Chromium for the module's browser tests (skips where there is none)."""
+    with chromium() as b:
+        yield b
+
+
+@pytest.fixture(scope="module")
+def shots(request: pytest.FixtureRequest, tmp_path_factory: pytest.TempPathFactory) -> Path:
+    """Where the module's screenshots go (kept for the docs when asked)."""
+    module = request.module.__name__.rsplit(".", 1)[-1].removeprefix("test_")
+    return screenshot_dir(tmp_path_factory.mktemp(f"{module}-shots"))
 
 
 @pytest.fixture(scope="module", params=BACKENDS)

@@ -16,7 +16,7 @@ from urllib.parse import quote, urlsplit
 import pytest
 
 from service.routes.process_operations import family_tag, operation_id
-from tests.browser import chromium, open_page, screenshot_dir
+from tests.browser import open_page
 from tests.integration.servers import Deployment, deployment
 from worker.registry import default_registry
 
@@ -34,17 +34,6 @@ TIMEOUT_MS = 30_000
 def api(tmp_path_factory: pytest.TempPathFactory) -> Iterator[Deployment]:
     with deployment("embedded", tmp_path_factory.mktemp("docs"), workers=0) as dep:
         yield dep
-
-
-@pytest.fixture(scope="module")
-def browser() -> Iterator[Any]:
-    with chromium() as b:
-        yield b
-
-
-@pytest.fixture(scope="module")
-def shots(tmp_path_factory: pytest.TempPathFactory) -> Path:
-    return screenshot_dir(tmp_path_factory.mktemp("api-docs"))
 
 
 def served_from(api: Deployment, urls: list[str]) -> None:

@@ -13,7 +13,7 @@ from urllib.parse import urlsplit
 
 import pytest
 
-from tests.browser import chromium, open_page, screenshot_dir
+from tests.browser import open_page, screenshot_dir
 from tests.integration.servers import Deployment, deployment, dexlab_command
 
 pytestmark = pytest.mark.integration
@@ -29,12 +29,6 @@ def server(tmp_path_factory: pytest.TempPathFactory) -> Iterator[Deployment]:
     env = {"DEXLAB_API_KEYS": f"alice:{ALICE},bob:{BOB}"}
     with deployment("embedded", tmp_path_factory.mktemp("keys-pages"), env=env) as dep:
         yield dep
-
-
-@pytest.fixture(scope="module")
-def browser() -> Iterator[Any]:
-    with chromium() as b:
-        yield b
 
 
 def log_in(page: Any, base_url: str, secret: str) -> None:

@@ -15,7 +15,7 @@ from urllib.parse import urlsplit
 
 import pytest
 
-from tests.browser import LOCAL_HOSTS, chromium, open_page, screenshot_dir
+from tests.browser import LOCAL_HOSTS, open_page
 from tests.integration.servers import Deployment, deployment
 from worker.registry import default_registry
 
@@ -30,17 +30,6 @@ PROCESS = "planar2dof-conditioning-map"
 def server(tmp_path_factory: pytest.TempPathFactory) -> Iterator[Deployment]:
     with deployment("embedded", tmp_path_factory.mktemp("pages"), workers=2) as dep:
         yield dep
-
-
-@pytest.fixture(scope="module")
-def browser() -> Iterator[Any]:
-    with chromium() as b:
-        yield b
-
-
-@pytest.fixture(scope="module")
-def shots(tmp_path_factory: pytest.TempPathFactory) -> Path:
-    return screenshot_dir(tmp_path_factory.mktemp("pages-shots"))
 
 
 @pytest.fixture(scope="module")

@@ -13,7 +13,7 @@ from typing import Any
 
 import pytest
 
-from tests.browser import chromium, open_page, screenshot_dir
+from tests.browser import open_page
 from tests.integration.servers import Deployment, deployment
 from worker.registry import default_registry
 
@@ -36,17 +36,6 @@ LONG_MAP = {
 def server(tmp_path_factory: pytest.TempPathFactory) -> Iterator[Deployment]:
     with deployment("embedded", tmp_path_factory.mktemp("workflow"), workers=2) as dep:
         yield dep
-
-
-@pytest.fixture(scope="module")
-def browser() -> Iterator[Any]:
-    with chromium() as b:
-        yield b
-
-
-@pytest.fixture(scope="module")
-def shots(tmp_path_factory: pytest.TempPathFactory) -> Path:
-    return screenshot_dir(tmp_path_factory.mktemp("workflow-shots"))
 
 
 def submit(server: Deployment, process_id: str, inputs: dict[str, Any]) -> str:

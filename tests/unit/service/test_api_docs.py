@@ -31,11 +31,6 @@ MEDIA_TYPES = {
 }
 
 
-@pytest.fixture
-def anyio_backend() -> str:
-    return "asyncio"
-
-
 class AssetLinks(HTMLParser):
     """The ``src`` and ``href`` of every element of a page."""
 

@@ -7,13 +7,8 @@ say ``Vary: Accept``; a parameter error is the surface's problem either way.
 
 from __future__ import annotations
 
-from collections.abc import AsyncIterator
-from pathlib import Path
-
 import httpx
 import pytest
-
-from tests.unit.service.asgi_app import asgi_client
 
 pytestmark = pytest.mark.anyio
 
@@ -32,17 +27,6 @@ NEGOTIATED = [
     "/ogc/processes/planar3r-dexterity-map",
     "/ogc/jobs",
 ]
-
-
-@pytest.fixture
-def anyio_backend() -> str:
-    return "asyncio"
-
-
-@pytest.fixture
-async def client(tmp_path: Path) -> AsyncIterator[httpx.AsyncClient]:
-    async with asgi_client(tmp_path) as c:
-        yield c
 
 
 def _kind(response: httpx.Response) -> str:

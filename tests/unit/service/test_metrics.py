@@ -4,7 +4,7 @@ server runs jobs on both backends: tests/integration/test_operations.py."""
 
 from __future__ import annotations
 
-from collections.abc import AsyncIterator, Iterable
+from collections.abc import Iterable
 from pathlib import Path
 from typing import Any
 
@@ -19,17 +19,11 @@ from service.app import create_app
 from service.config import Settings
 from service.metrics.job_collector import JobStoreCollector
 from service.request_id import request_id_for
-from tests.unit.service.asgi_app import asgi_client
 from worker.errors import StoreUnavailable
 from worker.store import open_store
 from worker.store.base import JobStore, NewJob
 
 pytestmark = pytest.mark.anyio
-
-
-@pytest.fixture
-def anyio_backend() -> str:
-    return "asyncio"
 
 
 def samples(text: str) -> list[Sample]:
@@ -40,12 +34,6 @@ def value(found: Iterable[Sample], name: str, **labels: str) -> float:
     matching = [s.value for s in found if s.name == name and s.labels == labels]
     assert len(matching) == 1, (name, labels, matching)
     return matching[0]
-
-
-@pytest.fixture
-async def client(tmp_path: Path) -> AsyncIterator[httpx.AsyncClient]:
-    async with asgi_client(tmp_path) as c:
-        yield c
 
 
 async def test_metrics_label_requests_by_route_template_never_the_raw_path(

@@ -23,11 +23,6 @@ pytestmark = pytest.mark.anyio
 
 
 @pytest.fixture
-def anyio_backend() -> str:
-    return "asyncio"
-
-
-@pytest.fixture
 def receiver() -> Iterator[tuple[str, list[tuple[str, str, Any]]]]:
     posts: list[tuple[str, str, Any]] = []
 

@@ -23,11 +23,6 @@ PROXY_HEADERS = {
 }
 
 
-@pytest.fixture
-def anyio_backend() -> str:
-    return "asyncio"
-
-
 def echo(request: Request) -> JSONResponse:
     client = request.client
     return JSONResponse(

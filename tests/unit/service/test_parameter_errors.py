@@ -10,7 +10,7 @@ the day it is published.
 
 from __future__ import annotations
 
-from collections.abc import AsyncIterator, Iterator
+from collections.abc import Iterator
 from pathlib import Path
 from typing import Any
 
@@ -18,7 +18,6 @@ import httpx
 import pytest
 
 from service.ogc.vocabulary import INVALID_PARAMETER_VALUE
-from tests.unit.service.asgi_app import asgi_client
 
 pytestmark = pytest.mark.anyio
 
@@ -27,17 +26,6 @@ EXTRA_BAD: dict[str, tuple[str, ...]] = {
     "cursor": ("garbage",),
     "datetime": ("yesterday",),
 }
-
-
-@pytest.fixture
-def anyio_backend() -> str:
-    return "asyncio"
-
-
-@pytest.fixture
-async def client(tmp_path: Path) -> AsyncIterator[httpx.AsyncClient]:
-    async with asgi_client(tmp_path) as c:
-        yield c
 
 
 def _resolve(schema: dict[str, Any], components: dict[str, Any]) -> dict[str, Any]:

@@ -59,11 +59,6 @@ TOY = SimpleNamespace(
 
 
 @pytest.fixture
-def anyio_backend() -> str:
-    return "asyncio"
-
-
-@pytest.fixture
 async def client(tmp_path: Path) -> AsyncIterator[httpx.AsyncClient]:
     registry = build_registry((*family_packages(), TOY))
     async with asgi_client(tmp_path, registry) as c:

@@ -30,11 +30,6 @@ FOURBAR_OGC = "/ogc/processes/fourbar-grashof/execution"
 INPUTS = {"lengths": [2, 7, 9, 6], "ground": 1}
 
 
-@pytest.fixture
-def anyio_backend() -> str:
-    return "asyncio"
-
-
 def key(secret: str) -> dict[str, str]:
     return {"Authorization": f"Bearer {secret}"}
 

@@ -22,11 +22,6 @@ from worker.store.api_keys import hash_secret
 from worker.store.base import ApiKey, JobStore
 
 
-@pytest.fixture
-def anyio_backend() -> str:
-    return "asyncio"
-
-
 class Clock:
     def __init__(self) -> None:
         self.now = 100.0
