@@ -172,6 +172,15 @@ class ProcessDefinition:
     #: alone, so that a re-run splits the same way (:mod:`worker.studies.chunking`).
     seconds_per_cost: float = 1e-6
     seconds_per_run: float = 1e-3
+    #: Top-level inputs that change how the work is cut, never the result (a study's
+    #: ``chunk_size``): left out of the result key, so a re-run differing only in them
+    #: reuses the stored result (docs/reuse.md).
+    unkeyed_inputs: tuple[str, ...] = ()
+
+    def keyed_inputs(self, inputs: Mapping[str, Any]) -> dict[str, Any]:
+        """The canonical inputs the result key is a digest of: ``inputs`` without
+        :attr:`unkeyed_inputs`."""
+        return {name: value for name, value in inputs.items() if name not in self.unkeyed_inputs}
 
     def time_limit_for(self, inputs: Any) -> float:
         """The time limit of one attempt of a job with these validated inputs."""

@@ -235,7 +235,9 @@ class WorkerLoop:
                     owner=job.owner,
                     parent_id=job.job_id,
                     # a re-run of the study reuses its stored chunks (worker.store.reuse)
-                    result_key=result_key(child.id, child_inputs, child.version, build),
+                    result_key=result_key(
+                        child.id, child.keyed_inputs(child_inputs), child.version, build
+                    ),
                     reuse="all" if scope == "all" else ("owner" if scope else None),
                     share=job.shareable,
                 )
@@ -310,7 +312,9 @@ class WorkerLoop:
         result["notes"] = list(outcome.all_notes)
         result["paper_errata"] = list(outcome.errata)
         build = self.settings.build
-        key = job.result_key or result_key(job.process_id, job.inputs, definition.version, build)
+        key = job.result_key or result_key(
+            job.process_id, definition.keyed_inputs(job.inputs), definition.version, build
+        )
         provenance = provenance_block(
             job.process_id, definition.version, build, self.settings.backend_name(), key
         )

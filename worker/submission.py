@@ -139,7 +139,9 @@ def submit_request(
         cheap=cheap,
         retention_s=min(retention_s or settings.result_ttl_s, settings.result_ttl_s),
         limits=queue_limits(settings, owner),
-        result_key=result_key(process_id, stored_inputs, definition.version, settings.build),
+        result_key=result_key(
+            process_id, definition.keyed_inputs(stored_inputs), definition.version, settings.build
+        ),
         reuse=settings.reuse if reuse and settings.reuse != "off" else None,
         share=share,
     )

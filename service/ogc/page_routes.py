@@ -85,7 +85,13 @@ def job_page(jobID: str, request: Request, api: ApiDep) -> HTMLResponse:
     urls = public_urls(request)
     result = api.store.get_result(jobID) if job.status is JobStatus.SUCCESSFUL else None
     return ogc_pages.job_page(
-        request, api.pages, api.registry, urls, job, result, as_json(status_info(job, urls))
+        request,
+        api.pages,
+        api.registry,
+        urls,
+        job,
+        result,
+        as_json(status_info(job, urls, admin=api.identity.admin)),
     )
 
 
@@ -98,7 +104,7 @@ def results_page(jobID: str, request: Request, api: ApiDep) -> HTMLResponse:
     definition = api.registry.get(job.process_id)
     outputs = process_outputs(definition) if definition is not None else {}
     selected = select_outputs(job, result, outputs, presentation, api.store)
-    document = as_json(status_info(job, urls))
+    document = as_json(status_info(job, urls, admin=api.identity.admin))
     return ogc_pages.results_page(
         request, api.pages, api.registry, urls, job, result, document, selected,
         presentation.response,

@@ -203,7 +203,7 @@ async def execute(
     if mode.synchronous:  # waited in vain: the status as it is now
         job = await run_in_threadpool(_current, api.store, job)
     response.headers.update(headers)
-    return status_info(job, urls)
+    return status_info(job, urls, admin=api.identity.admin)
 
 
 def _current(store: JobStore, job: JobRecord) -> JobRecord:

@@ -137,6 +137,12 @@ class OgcStatusInfo(_Document):
         description="dexlab: when the finished job and its results are deleted (absent "
         "while it is unfinished); statusInfo.yaml allows members it does not list.",
     )
+    reused_from: str | bool | SkipJsonSchema[None] = Field(
+        None,
+        description="dexlab: a job answered at once by a stored result of the same result "
+        "key: the ID of the job that computed it when that job was the caller's (or the "
+        "caller is an admin), else true; absent for a job that computed its own result.",
+    )
     links: list[OgcLink]
 
 

@@ -109,7 +109,9 @@ def chunk_inputs(spec: StudySpec, process: ProcessDefinition) -> list[dict[str, 
     and the engine."""
     choice = choose_engine(spec, process)
     size = chunk_size(spec, process, choice)
-    study = spec.model_dump(mode="json")
+    # chunk_size only cuts the work: a chunk's inputs (and so its result key) leave it
+    # out, and a chunk of the same designs is reused whatever cut the study asked for
+    study = spec.model_dump(mode="json", exclude={"chunk_size"})
     count = spec.designs.count
     return [
         {"study": study, "start": start, "stop": min(start + size, count),

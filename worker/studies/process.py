@@ -259,6 +259,7 @@ def design_study(studied: ProcessRegistry) -> ProcessDefinition:
         # (designs.npz reason_code/reason_field instead of a reason string per design, a
         # reason_code column in designs.csv), infeasible_reasons by code, field and message.
         version="2.0.0",
+        unkeyed_inputs=("chunk_size",),
         result_paths=STUDY_RESULT_PATHS,
         title="Design study: one process over many designs, with the Pareto front",
         description=(

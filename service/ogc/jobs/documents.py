@@ -5,6 +5,7 @@ from __future__ import annotations
 from collections.abc import Sequence
 from datetime import datetime
 
+from service.documents import reused_from
 from service.ogc.schemas import OgcJobList, OgcLink, OgcStatusInfo
 from service.ogc.urls import PublicUrls, self_and_alternate
 from service.ogc.vocabulary import JSON, REL_EXCEPTIONS, REL_RESULTS
@@ -17,10 +18,11 @@ def _iso(value: datetime) -> str:
     return value.isoformat().replace("+00:00", "Z")
 
 
-def status_info(job: JobRecord, urls: PublicUrls) -> OgcStatusInfo:
+def status_info(job: JobRecord, urls: PublicUrls, *, admin: bool = False) -> OgcStatusInfo:
     """Where a job is: status, progress, the times known so far, and links to itself
     (as JSON and as a page), the job list, its process and (when finished) its results
-    or its exception."""
+    or its exception; ``reused_from`` for a job answered by a stored result (the
+    original job's ID when the caller owns it or is an ``admin``, else true)."""
     href = urls.job(job.job_id)
     links = [
         *self_and_alternate(href, "this status information"),
@@ -62,6 +64,8 @@ def status_info(job: JobRecord, urls: PublicUrls) -> OgcStatusInfo:
         )
         if value is not None
     }
+    origin = reused_from(job, admin)
+    extra = {} if origin is None else {"reused_from": origin}
     return OgcStatusInfo(
         processID=job.process_id,
         type="process",
@@ -72,12 +76,18 @@ def status_info(job: JobRecord, urls: PublicUrls) -> OgcStatusInfo:
         created=_iso(job.created),
         updated=_iso(job.updated),
         **times,
+        **extra,
         links=[OgcLink.model_validate(link) for link in links],
     )
 
 
 def job_list(
-    jobs: Sequence[JobRecord], urls: PublicUrls, self_href: str, next_href: str | None
+    jobs: Sequence[JobRecord],
+    urls: PublicUrls,
+    self_href: str,
+    next_href: str | None,
+    *,
+    admin: bool = False,
 ) -> OgcJobList:
     """A page of jobs, newest first, with ``self``, ``alternate`` (the page as HTML)
     and, when more remain, ``next``."""
@@ -85,6 +95,6 @@ def job_list(
     if next_href is not None:
         links.append({"href": next_href, "rel": "next", "type": JSON, "title": "the next page"})
     return OgcJobList(
-        jobs=[status_info(job, urls) for job in jobs],
+        jobs=[status_info(job, urls, admin=admin) for job in jobs],
         links=[OgcLink.model_validate(link) for link in links],
     )

@@ -118,4 +118,4 @@ def job_list_document(request: Request, api: Api, query: JobListQuery) -> OgcJob
         if page.next_cursor is None
         else f"{urls.ogc}/jobs?{page_query(params, page.next_cursor)}"
     )
-    return job_list(page.jobs, urls, self_href, next_href)
+    return job_list(page.jobs, urls, self_href, next_href, admin=api.identity.admin)

@@ -61,7 +61,7 @@ def get_job(
 ) -> OgcStatusInfo:
     job = find_job(api.store, jobID, api.identity.owner_scope)
     response.headers.update(ogc_pages.NEGOTIATED)
-    return status_info(job, public_urls(request))
+    return status_info(job, public_urls(request), admin=api.identity.admin)
 
 
 @router.delete(
@@ -76,7 +76,7 @@ def dismiss_job(jobID: str, request: Request, api: ApiDep) -> OgcStatusInfo:
     job = api.store.dismiss(jobID, owner=api.identity.owner_scope)
     if job is None:
         raise missing_job(api.store, jobID, api.identity.owner_scope)
-    return status_info(job, public_urls(request))
+    return status_info(job, public_urls(request), admin=api.identity.admin)
 
 
 # The results and outputs are not one document: the execute request chose their form

@@ -88,6 +88,13 @@ async def test_with_reuse_all_two_keys_make_two_jobs_and_one_computation(tmp_pat
         assert again["reused_from"] == first["jobID"]  # alice's own
         admin_view = (await s.client.get(f"/v1/jobs/{bob['jobID']}", headers=key(ADMIN))).json()
         assert admin_view["reused_from"] == first["jobID"]
+        ogc = f"/ogc/jobs/{bob['jobID']}"
+        assert (await s.client.get(ogc, headers=key(BOB))).json()["reused_from"] is True
+        ogc_admin = (await s.client.get(ogc, headers=key(ADMIN))).json()
+        assert ogc_admin["reused_from"] == first["jobID"]
+        listed = (await s.client.get("/ogc/jobs", headers=key(ALICE))).json()["jobs"]
+        assert {j["jobID"]: j.get("reused_from") for j in listed} == {
+            first["jobID"]: None, again["jobID"]: first["jobID"]}  # fmt: skip
         alice_results = await s.results(ALICE, first["jobID"])
         bob_results = await s.results(BOB, bob["jobID"])
         assert bob_results["reused_from"] is True and "reused_from" not in alice_results
@@ -222,3 +229,31 @@ async def test_a_study_run_again_reuses_its_stored_chunks(tmp_path: Path) -> Non
         other = await s.results(ALICE, fresh.json()["jobID"])
         assert one["result"]["result_hash"] == other["result"]["result_hash"]
         assert one["result"]["feasible"] == other["result"]["feasible"]
+
+
+async def test_chunk_size_is_left_out_of_the_keys(tmp_path: Path) -> None:
+    """chunk_size only cuts the work: a finished study asked again with another
+    chunk_size is answered by its stored result, and a study cut the same way by an
+    explicit chunk_size reuses the chunks another cut left (none of their inputs names
+    it)."""
+    async with service(tmp_path, "owner") as s:
+        url = "/v1/processes/design-study/execution"
+        first = (await s.client.post(url, json={"inputs": STUDY}, headers=key(ALICE))).json()
+        s.drain()
+        other_cut = {**STUDY, "chunk_size": 7}
+        again = (await s.client.post(url, json={"inputs": other_cut}, headers=key(ALICE))).json()
+        assert again["status"] == "successful" and again["reused_from"] == first["jobID"]
+        # a study cut by the cost model (twenty designs: four chunks of five) dismissed after
+        # its chunks ran, then asked with that cut spelled out: every chunk reused
+        moved = {k: v for k, v in STUDY.items() if k != "chunk_size"}
+        moved["fixed"] = {**STUDY["fixed"], "grid": {"points_per_axis": 6}}
+        started = (await s.client.post(url, json={"inputs": moved}, headers=key(ALICE))).json()
+        assert s.drain(limit=1) == 1
+        status = await s.client.get(f"/v1/jobs/{started['jobID']}", headers=key(ALICE))
+        chunks = status.json()["chunks"]["total"]
+        assert chunks == 4 and s.drain(limit=chunks) == chunks
+        await s.client.delete(f"/v1/jobs/{started['jobID']}", headers=key(ALICE))
+        same_cut = {**moved, "chunk_size": 5}
+        rerun = (await s.client.post(url, json={"inputs": same_cut}, headers=key(ALICE))).json()
+        assert rerun["status"] == "accepted"
+        assert s.drain() == 2  # the split and the assembly
