@@ -19,6 +19,7 @@ import click
 from dexlab.cli.client_options import client_options, open_client, reported_errors
 from dexlab.cli.job_ids import find_job
 from dexlab.cli.render import print_json, print_results, print_status, print_status_table
+from dexlab.cli.robot_option import RobotChoice, robot_options
 from dexlab.client import Client
 from dexlab.documents import example_inputs
 from dexlab.errors import DexlabError
@@ -128,6 +129,7 @@ def _wait_or_dismiss(job: Job, timeout: float | None) -> None:
     metavar="N",
     help="Run worked example N (from 0; 'dexlab describe ID' lists them).",
 )
+@robot_options
 @click.option("--wait", is_flag=True, help="Wait for the job, with a progress bar.")
 @click.option(
     "--download",
@@ -143,13 +145,17 @@ def _wait_or_dismiss(job: Job, timeout: float | None) -> None:
     help="Stop waiting after this long (the job goes on).",
 )
 @client_options  # fmt: skip
-def run(process_id: str, source: IO[str] | None, example: int | None, wait: bool,
-        directory: Path | None, timeout: float | None, url: str, api_key: str | None,
-        as_json: bool) -> None:  # fmt: skip
-    """Submit a job; with --wait (or --download), follow it and print its results."""
+def run(process_id: str, source: IO[str] | None, example: int | None, robot: RobotChoice,
+        wait: bool, directory: Path | None, timeout: float | None, url: str,
+        api_key: str | None, as_json: bool) -> None:  # fmt: skip
+    """Submit a job; with --wait (or --download), follow it and print its results.
+
+    With --robot, a serial process studies your own arm: a URDF, a DH table (CSV) or
+    a JSON file replaces the robot of the inputs (or of the example)."""
     with reported_errors(as_json), open_client(url, api_key) as client:
         descriptions = _Descriptions(client)
-        job = client.submit(process_id, _inputs(descriptions, process_id, source, example))
+        inputs = _inputs(descriptions, process_id, source, example)
+        job = client.submit(process_id, robot.applied(inputs))
         if not (wait or directory is not None):
             if as_json:
                 print_json(job.last_status.document)

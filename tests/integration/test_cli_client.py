@@ -179,3 +179,30 @@ def test_a_failing_job_exits_1_with_its_problem(tmp_path: Path) -> None:
         assert lines[-1].strip().startswith("job ") and "time-limit-exceeded" in lines[-1]
         again = dexlab(strict, "results", job_id_of(done.stderr))
         assert again.returncode == 1 and "Time limit exceeded" in again.stderr
+
+
+def test_your_own_arm_from_a_dh_table_or_a_urdf_gives_the_same_numbers(
+    server: Deployment, tmp_path: Path
+) -> None:
+    """``--robot`` replaces the example's arm: the UR5 as a DH table (CSV) and as the
+    worked example's URDF give the same poses and indices."""
+    # lazy: the worked examples' arms, re-typed into files as a user would
+    from worker.families.serial.arms import UR5_URDF
+
+    table = tmp_path / "ur5.csv"
+    table.write_text("a,alpha_deg,d\n0,90,0.089459\n-0.425,0,0\n-0.39225,0,0\n"
+                     "0,90,0.10915\n0,-90,0.09465\n0,0,0.0823\n")  # fmt: skip
+    urdf = tmp_path / "ur5.urdf"
+    urdf.write_text(UR5_URDF["urdf"])
+    poses = []
+    links = ["--base-link", "base_link", "--tip-link", "tool0"]
+    for extra in (["--robot", str(table)], ["--robot", str(urdf), *links]):
+        done = parsed(dexlab(server, "run", "serial-indices", "--example", "0", *extra,
+                             "--wait", "--json"))  # fmt: skip
+        poses.append(done["result"]["poses"])
+    assert len(poses[0]) == len(poses[1]) > 0
+    for dh_pose, urdf_pose in zip(*poses, strict=True):
+        assert dh_pose["position"] == pytest.approx(urdf_pose["position"], abs=1e-9)
+        assert dh_pose["manipulability"] == pytest.approx(urdf_pose["manipulability"], abs=1e-9)
+    refused = dexlab(server, "run", "serial-indices", "--example", "0", "--robot", str(urdf))
+    assert refused.returncode == 2 and "base_link and tip_link" in refused.stderr
