@@ -40,7 +40,7 @@ from dexlab.errors import (
 from dexlab.job import Job
 from dexlab.quantities import ResultPaths, ResultQuantity
 from dexlab.retry import RetryPolicy
-from dexlab.robot_files import robot_from_dh_table, robot_from_file
+from dexlab.robot_files import robot_from_file
 
 __all__ = [
     "Artifact",
@@ -69,6 +69,5 @@ __all__ = [
     "ServiceUnreachable",
     "Unauthorized",
     "WaitTimeout",
-    "robot_from_dh_table",
     "robot_from_file",
 ]

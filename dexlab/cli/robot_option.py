@@ -51,8 +51,9 @@ def robot_options(command: Callable[..., Any]) -> Callable[..., Any]:
         "robot_path",
         type=click.Path(exists=True, dir_okay=False, path_type=Path),
         metavar="FILE",
-        help="Your arm: a URDF (.urdf/.xml), a DH table (.csv: a, alpha_deg, d, "
-        "theta_deg, type, lower, upper) or a robot JSON; replaces the inputs' robot.",
+        help="Your arm: a URDF (.urdf/.xml), a DH table (.csv/.tsv/.txt: a header row a, "
+        "alpha_deg, d[, theta_deg, type, lower, upper], then a row per joint) or a robot "
+        "JSON; replaces the inputs' robot.",
     )
     @click.option("--base-link", metavar="LINK", help="The URDF link the chain starts at.")
     @click.option("--tip-link", metavar="LINK", help="The URDF link the chain ends at.")

@@ -1,10 +1,12 @@
 """The pages' form actions (no JavaScript needed), under ``/pages/``.
 
 - ``POST /pages/processes/{processID}/run``: the (edited) JSON of a worked example,
-  as the form field ``inputs``; a job is queued and the browser is sent to its page
-  (303).  JSON that does not parse, or inputs that do not validate, re-render the
-  process page with the problem and the user's text kept (in the "Edit and run again"
-  form when the field ``from`` names the job it came from).
+  as the form field ``inputs`` (with the "Your own arm" form, the other inputs, and the
+  arm pasted as a DH table or a URDF: :mod:`service.pages.own_arm`); a job is queued
+  and the browser is sent to its page (303).  JSON that does not parse, or inputs that
+  do not validate, re-render the process page with the problem and the user's text kept
+  (in the form it came from: "Edit and run again" when the field ``from`` names the job
+  it came from).
 - ``POST /pages/jobs/{jobID}/dismiss``: cancel a queued or running job, or delete a
   finished one's results, then back to the job's page (303).
 
@@ -32,6 +34,7 @@ from service.job_lookup import missing_job
 from service.pages import views
 from service.pages.forms import check_csrf, check_form_origin, read_form
 from service.pages.job_forms import rerun_form
+from service.pages.own_arm import own_arm_form, robot_from_form
 from service.problems import problem_document
 from service.request_guard import json_depth
 from worker.errors import (
@@ -92,9 +95,12 @@ async def run_process(process_id: str, request: Request, api: ApiDep) -> Respons
     if source_job:  # "Edit and run again": a refused run comes back in that form
         examples.insert(0, rerun_form(source_job, text))
         index = 0
+    own_arm = "robot_kind" in form  # the "Your own arm" form: a pasted DH table or URDF
     retry_after: str | None = None
     try:
         inputs = _parse_inputs(text, settings.max_json_depth)
+        if own_arm:
+            inputs["robot"] = robot_from_form(form)
         job, _ = await run_in_threadpool(
             submit, store, registry, settings, process_id, inputs, None, api.dispatcher,
             api.identity.name,
@@ -113,9 +119,13 @@ async def run_process(process_id: str, request: Request, api: ApiDep) -> Respons
         retry_after = answer.headers.get("Retry-After")
     else:
         return RedirectResponse(job_href(job.job_id), status_code=303)
-    examples[index].update(text=text, problem=problem, rows=max(examples[index]["rows"], 8))
+    extra = {}
+    if own_arm:  # the problem goes back to the form it came from
+        extra["own_arm"] = own_arm_form(definition, form, problem)
+    else:
+        examples[index].update(text=text, problem=problem, rows=max(examples[index]["rows"], 8))
     page = await run_in_threadpool(
-        partial(views.process_page, examples=examples, status_code=problem["status"]),
+        partial(views.process_page, examples=examples, status_code=problem["status"], extra=extra),
         request,
         api.pages,
         registry,

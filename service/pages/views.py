@@ -6,7 +6,6 @@ store or does blocking work beyond reading a method page from disk.
 
 from __future__ import annotations
 
-import json
 from collections.abc import Mapping, Sequence
 from datetime import UTC, datetime
 from typing import Any
@@ -18,6 +17,8 @@ from fastapi.responses import HTMLResponse
 from service.documents import artifact_link, as_json, job_href, status_document
 from service.pages.input_table import input_rows
 from service.pages.job_timing import duration_s, duration_text, job_timing
+from service.pages.json_text import compact_json
+from service.pages.own_arm import own_arm_form
 from service.pages.quantities import job_quantities
 from service.pages.renderer import Pages
 from service.pages.result_view import result_view
@@ -54,23 +55,6 @@ def landing_page(request: Request, pages: Pages, registry: ProcessRegistry) -> H
 
 def process_list_page(request: Request, pages: Pages, registry: ProcessRegistry) -> HTMLResponse:
     return pages.render(request, "processes.html", {"families": pages.families(registry)})
-
-
-def compact_json(value: Any, indent: int = 0, width: int = 72) -> str:
-    """JSON laid out for a person to edit: a value that fits ``width`` on one line,
-    else one member (or item) per line, indented by two."""
-    flat = json.dumps(value, ensure_ascii=False)
-    if len(flat) + indent <= width or not isinstance(value, dict | list) or not value:
-        return flat
-    pad = " " * (indent + 2)
-    if isinstance(value, dict):
-        members = [
-            f"{pad}{json.dumps(str(k), ensure_ascii=False)}: {compact_json(v, indent + 2, width)}"
-            for k, v in value.items()
-        ]
-        return "{\n" + ",\n".join(members) + "\n" + " " * indent + "}"
-    items = [f"{pad}{compact_json(v, indent + 2, width)}" for v in value]
-    return "[\n" + ",\n".join(items) + "\n" + " " * indent + "]"
 
 
 def _rows(text: str) -> int:
@@ -131,6 +115,7 @@ def process_page(
             {**entry.describe(), "symbol": plain_symbol(entry.symbol) if entry.symbol else ""}
             for entry in definition.result_paths
         ],
+        "own_arm": own_arm_form(definition),
         **(extra or {}),
     }
     return pages.render(request, template, context, status_code=status_code)

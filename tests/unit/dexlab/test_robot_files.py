@@ -9,8 +9,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from dexlab import robot_from_dh_table, robot_from_file
-from worker.families.serial.arms import PUMA_560, UR5, UR5_URDF
+from dexlab import robot_from_file
+from worker.families.serial.arms import UR5, UR5_URDF
 from worker.families.serial.robot_input import RobotSpec
 
 UR5_CSV = """# UR5, standard DH (metres, degrees)
@@ -28,24 +28,16 @@ def fixed(robot: dict[str, object]) -> np.ndarray:
     return RobotSpec.model_validate(robot).arm("m").fixed
 
 
-def test_a_csv_dh_table_is_the_worked_example_arm(tmp_path: Path) -> None:
+def test_a_csv_dh_table_is_sent_as_text_and_read_as_the_worked_example_arm(
+    tmp_path: Path,
+) -> None:
     path = tmp_path / "ur5.csv"
     path.write_text(UR5_CSV)
     robot = robot_from_file(path)
+    assert robot == {"dh_table": UR5_CSV, "convention": "standard"}
     assert fixed(robot) == pytest.approx(fixed(UR5), abs=1e-15)
-
-
-def test_a_whitespace_table_with_types_and_limits() -> None:
-    rows = PUMA_560["dh"]
-    assert isinstance(rows, list)
-    lines = ["a alpha_deg d theta_deg type lower upper"]
-    lines += [f"{r['a']} {r['alpha_deg']} {r['d']} 0 revolute {r['limits'][0]} {r['limits'][1]}"
-              for r in rows]  # fmt: skip
-    robot = robot_from_dh_table("\n".join(lines))
-    spec = RobotSpec.model_validate(robot)
-    reference = RobotSpec.model_validate(PUMA_560)
-    assert spec.arm("m").fixed == pytest.approx(reference.arm("m").fixed, abs=1e-15)
-    assert spec.arm("m").lower == pytest.approx(reference.arm("m").lower)
+    modified = robot_from_file(path, convention="modified")
+    assert modified["convention"] == "modified"
 
 
 def test_a_urdf_needs_its_links_and_is_sent_as_it_is(tmp_path: Path) -> None:
@@ -61,23 +53,12 @@ def test_json_is_the_robot_or_a_document_holding_it(tmp_path: Path) -> None:
     path = tmp_path / "arm.json"
     path.write_text(json.dumps({"robot": UR5, "configurations": [[0] * 6]}))
     assert robot_from_file(path) == UR5
-
-
-@pytest.mark.parametrize(
-    ("text", "message"),
-    [
-        ("", "empty"),
-        ("a,alpha_deg,d\n", "no joint"),
-        ("a,alpha,d\n1,2,3\n", "unknown DH column"),
-        ("a,alpha_deg,d\n1,2\n", "row 1 has 2 cells"),
-        ("a,alpha_deg,d\n1,x,3\n", "'alpha_deg': 'x' is not a number"),
-        ("a,alpha_deg,d,lower\n1,2,3,4\n", "lower and upper"),
-        ("a,d\n1,2\n", "at least the columns"),
-    ],
-)
-def test_a_bad_table_says_what_is_wrong(text: str, message: str) -> None:
-    with pytest.raises(ValueError, match=message):
-        robot_from_dh_table(text)
+    path.write_text("[1, 2]")
+    with pytest.raises(ValueError, match="the robot object"):
+        robot_from_file(path)
+    path.write_text("{")
+    with pytest.raises(ValueError, match="not JSON"):
+        robot_from_file(path)
 
 
 def test_an_unknown_suffix_asks_what_the_file_holds(tmp_path: Path) -> None:

@@ -8,13 +8,14 @@ Validated once at the boundary into a frozen :class:`~.kinematics.arm.SerialArm`
 from __future__ import annotations
 
 import math
-from typing import Literal
+from typing import Any, Literal
 
 import numpy as np
 from pydantic import Field, model_validator
 
 from worker.common.field_errors import field_error
 from worker.common.specs import FrozenSpec
+from worker.families.serial.dh_table import MAX_DH_TABLE_CHARS, dh_rows
 from worker.families.serial.kinematics.arm import DHRow, SerialArm, arm_from_dh, rpy_transform
 from worker.families.serial.urdf_chain import MAX_URDF_BYTES, UrdfProblem, arm_from_urdf
 
@@ -91,6 +92,14 @@ class RobotSpec(FrozenSpec):
     dh: tuple[DHJoint, ...] | None = Field(
         None, max_length=MAX_JOINTS, description=f"DH rows, one per joint (1..{MAX_JOINTS})."
     )
+    dh_table: str | None = Field(
+        None,
+        max_length=MAX_DH_TABLE_CHARS,
+        description="Instead of 'dh': the DH table as text, as copied from a paper or a "
+        "spreadsheet: a header row naming the columns (a, alpha_deg, d; optional "
+        "theta_deg, type, lower, upper), then one row per joint, separated by commas, "
+        "tabs or spaces. Read into 'dh' rows (the stored inputs hold the rows).",
+    )
     convention: Literal["standard", "modified"] = Field(
         "standard",
         description="standard: Rz(θ)·Tz(d)·Tx(a)·Rx(α) per row; modified (Craig): row i "
@@ -107,6 +116,24 @@ class RobotSpec(FrozenSpec):
                                  "ends at (the tool frame before `tool`).")  # fmt: skip
     base: Placement | None = Field(None, description="Where the arm's base sits.")
     tool: Placement | None = Field(None, description="The tool point from the last frame.")
+
+    @model_validator(mode="before")
+    @classmethod
+    def _table_rows(cls, data: Any) -> Any:
+        """A ``dh_table`` becomes ``dh`` rows (with ``dh`` too, it is refused)."""
+        if not isinstance(data, dict) or data.get("dh_table") is None:
+            return data
+        text = data["dh_table"]
+        if not isinstance(text, str) or len(text) > MAX_DH_TABLE_CHARS:
+            return data  # the field's own check says what is wrong
+        if data.get("dh") is not None:
+            raise field_error(cls, "dh_table", "give the DH rows as 'dh' or as 'dh_table', "
+                              "not both", None)  # fmt: skip
+        try:
+            rows = dh_rows(text)
+        except ValueError as exc:
+            raise field_error(cls, "dh_table", str(exc), None) from None
+        return {**{k: v for k, v in data.items() if k != "dh_table"}, "dh": rows}
 
     @model_validator(mode="after")
     def _one_model(self) -> RobotSpec:
