@@ -96,10 +96,11 @@ def arm_scale(arm: SerialArm) -> float:
     return size if size > 0.0 else 1.0
 
 
-def seed_configurations(arm: SerialArm, targets: int, seeds: int, seed: int) -> FloatArray:
+def seed_configurations(
+    arm: SerialArm, targets: int, seeds: int, rng: np.random.Generator
+) -> FloatArray:
     """Starting configurations (targets, seeds, n), uniform inside the joint limits, from
-    ``numpy.random.default_rng(seed)``."""
-    rng = np.random.default_rng(seed)
+    generator ``rng`` (``numpy.random.default_rng(seed)``: reproducible)."""
     unit = rng.random((targets, seeds, arm.joints))
     out: FloatArray = arm.lower + unit * (arm.upper - arm.lower)
     return out
