@@ -83,7 +83,14 @@ SERIAL_REACH_EXAMPLES = (
         "UR5 (standard DH): five target poses",
         "Three oriented targets the arm reaches, a position-only one, and one a metre "
         "beyond its reach: reached_share 0.8.",
-        {"robot": UR5, "targets": _UR5_TARGETS, "seeds": 8, "seed": 0, "length_unit": "m"},
+        {
+            "robot": UR5,
+            "targets": _UR5_TARGETS,
+            "seeds": 8,
+            "seed": 0,
+            "length_unit": "m",
+            "characteristic_length": 0.5,
+        },
     ),
     _example(
         "Patel & Sobh's Example 1 arm: its task points, closed form",

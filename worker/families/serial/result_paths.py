@@ -65,7 +65,7 @@ SERIAL_REACH_RESULT_PATHS = (
     R("summary.reached_share", "-", "", "The share of targets reached, in [0, 1]."),
     R("summary.manipulability_min", "mixed", r"$w_{\min}$", "The least manipulability of "
       "the reached targets' solutions."),
-    R("summary.manipulability_mean", "mixed", r"$\bar w$", "The mean manipulability of "
+    R("summary.manipulability_mean", "mixed", "$w$", "The mean manipulability of "
       "the reached targets' solutions."),
     R("summary.inverse_condition_min", "-", r"$1/\kappa_{\min}$", "The least inverse "
       "condition number of the reached targets' solutions."),
