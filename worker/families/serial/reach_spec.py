@@ -11,10 +11,10 @@ takes ``[x, y]`` (the arm's own plane) or ``[x, y, z]``, and only a yaw (the too
 from __future__ import annotations
 
 import math
-from typing import Literal
+from typing import Annotated, Any, Literal
 
 import numpy as np
-from pydantic import Field, model_validator
+from pydantic import BeforeValidator, Field, model_validator
 
 from worker.common.field_errors import field_error
 from worker.common.specs import FrozenSpec
@@ -46,6 +46,12 @@ MAX_ITERATIONS = 2_000
 DEFAULT_POSITION_TOLERANCE = 1e-6
 #: The default orientation tolerance (degrees).
 DEFAULT_ORIENTATION_TOLERANCE_DEG = 1e-3
+
+
+def _not_empty(value: Any) -> Any:
+    if isinstance(value, list | tuple) and not value:
+        raise ValueError("give at least one target")
+    return value
 
 
 class TargetTolerance(FrozenSpec):
@@ -80,9 +86,12 @@ class SerialReachSpec(FrozenSpec):
     """Inputs of ``serial-reach``."""
 
     robot: RobotSpec = Field(..., description="The arm: a DH table or a URDF chain.")
-    targets: tuple[ReachTarget, ...] = Field(
-        ..., min_length=1, max_length=MAX_TARGETS, description="Target poses of the tool."
-    )
+    # no min_length: pydantic would add "at least 1 item" whenever an item is refused;
+    # an empty list is refused before the items instead (the schema keeps minItems)
+    targets: Annotated[tuple[ReachTarget, ...], BeforeValidator(_not_empty)] = Field(
+        ..., max_length=MAX_TARGETS, json_schema_extra={"minItems": 1},
+        description="Target poses of the tool.",
+    )  # fmt: skip
     seeds: int = Field(8, ge=1, le=MAX_SEEDS, description="Starting configurations per "
                        "target, uniform inside the joint limits.")  # fmt: skip
     seed: int = Field(0, ge=0, le=2**32 - 1, description="Seed of the starting "
