@@ -5,8 +5,8 @@ reach radii without limits, d_z > 0 with limits, feasible tool-angle arcs."""
 from __future__ import annotations
 
 import copy
-import re
 import math
+import re
 from typing import Any
 
 import numpy as np
