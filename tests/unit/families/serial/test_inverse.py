@@ -176,3 +176,32 @@ def test_the_closed_form_agrees_with_the_numerical_solver(oriented: bool) -> Non
     again = forward_kinematics(arm, closed.q[reached])
     assert np.allclose(again[:, :3, 3], tool[reached, :3, 3], atol=1e-9)
     assert np.all((closed.q >= arm.lower - 1e-12) & (closed.q <= arm.upper + 1e-12))
+
+
+@settings(max_examples=25, deadline=None, derandomize=True)
+@given(
+    links=st.tuples(*[st.floats(0.5, 20.0)] * 3),
+    seed=st.integers(0, 2**16),
+    oriented=st.booleans(),
+)
+def test_closed_form_solutions_reproduce_their_targets(
+    links: tuple[float, float, float], seed: int, oriented: bool
+) -> None:
+    """Any planar 3R arm: random configurations within its limits -> FK -> closed form
+    -> FK is the target (the tool angle too when given), within the limits."""
+    robot = limited_example_1([(-150, 150), (-170, 170), (-120, 120)])
+    for row, length in zip(robot["dh"], links, strict=True):
+        row["a"] = length
+    arm = arm_of(robot)
+    geometry = planar_3r_geometry(arm)
+    assert geometry is not None
+    tool = forward_kinematics(arm, random_configurations(arm, 10, seed))
+    targets = targets_at(arm, tool, oriented)
+    solution = solve_planar_3r(arm, geometry, targets)
+    if oriented:
+        assert solution.reached.all()
+        assert np.all(solution.orientation_residual <= targets.orientation_tolerance)
+    else:  # by the 0.2° scan of the tool angle (no arc here is narrower than a step)
+        assert solution.reached.all()
+    assert np.all(solution.position_residual[solution.reached] <= 1e-9 * sum(links))
+    assert np.all((solution.q >= arm.lower - 1e-12) & (solution.q <= arm.upper + 1e-12))
