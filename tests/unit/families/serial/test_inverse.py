@@ -13,7 +13,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 from scipy.spatial.transform import Rotation
 
-from worker.families.serial.arms import EXAMPLE_1_PLANAR, PANDA, PUMA_560, UR5
+from worker.families.serial.arms import EXAMPLE_1_PLANAR, PANDA, PUMA_560, UR5, UR5_URDF
 from worker.families.serial.kinematics.arm import SerialArm
 from worker.families.serial.kinematics.chain import forward_kinematics
 from worker.families.serial.kinematics.inverse import (
@@ -27,7 +27,18 @@ from worker.families.serial.kinematics.planar_3r import planar_3r_geometry, solv
 from worker.families.serial.kinematics.rotations import rotation_angle, rotation_vector
 from worker.families.serial.robot_input import RobotSpec
 
-ARMS = {"UR5": UR5, "Puma 560": PUMA_560, "Panda": PANDA, "Example 1": EXAMPLE_1_PLANAR}
+#: A SCARA: two revolute joints, a prismatic quill (metres) and a wrist turn.
+SCARA = {
+    "dh": [
+        {"a": 0.4, "d": 0.3, "limits": [-150, 150]},
+        {"a": 0.3, "alpha_deg": 180.0, "limits": [-140, 140]},
+        {"type": "prismatic", "limits": [0.0, 0.2]},
+        {"d": 0.05},
+    ],
+    "convention": "standard",
+}
+ARMS = {"UR5": UR5, "UR5 URDF": UR5_URDF, "Puma 560": PUMA_560, "Panda": PANDA,
+        "SCARA": SCARA, "Example 1": EXAMPLE_1_PLANAR}  # fmt: skip
 
 
 def arm_of(robot: dict[str, Any]) -> SerialArm:
@@ -74,7 +85,7 @@ def test_rotation_vectors_agree_with_scipy_even_near_a_half_turn() -> None:
     assert np.allclose(rotation_angle(matrices), np.linalg.norm(vectors, axis=1), atol=1e-9)
 
 
-@pytest.mark.parametrize("name", ["UR5", "Puma 560", "Panda"])
+@pytest.mark.parametrize("name", ["UR5", "UR5 URDF", "Puma 560", "Panda", "SCARA"])
 @pytest.mark.parametrize("oriented", [True, False])
 @settings(max_examples=4, deadline=None, derandomize=True)
 @given(seed=st.integers(0, 2**16))
