@@ -132,9 +132,9 @@ SERIAL_REACH = ProcessDefinition(
         "length_unit": "The length unit.",
         "characteristic_length": "The length dividing the linear rows (null: unscaled).",
         "solver": "'closed-form planar 3R' or 'damped least squares'.",
-        "seeds": "Starting configurations per target (null: closed form).",
-        "seed": "Seed of the starting configurations (null: closed form).",
-        "max_iterations": "Iterations per target (null: closed form).",
+        "seeds": "Starting configurations per target of the numerical solver.",
+        "seed": "Seed of the starting configurations.",
+        "max_iterations": "Damped least-squares iterations per target.",
         "targets": "Per target: position, rpy_deg, reached, configuration, residual "
         "(position, orientation_deg), tolerance, solutions, manipulability, "
         "inverse_condition.",

@@ -41,9 +41,10 @@ SERIAL_REACH_RESULT_PATHS = (
     R("arm.joints", "-", "$n$", "Movable joints."),
     R("characteristic_length", "length", "$L$", "The length dividing the linear rows for "
       "the inverse condition number (null: unscaled)."),
-    R("seeds", "-", "", "Starting configurations per target (numerical solver)."),
-    R("seed", "-", "", "Seed of the starting configurations (numerical solver)."),
-    R("max_iterations", "-", "", "Damped least-squares iterations (numerical solver)."),
+    R("seeds", "-", "", "Starting configurations per target of the numerical "
+      "solver (with the closed form: for the targets it does not reach)."),
+    R("seed", "-", "", "Seed of the starting configurations."),
+    R("max_iterations", "-", "", "Damped least-squares iterations per target."),
     R("targets[].position[]", "length", "$p_t$", "The target point in the base frame."),
     R("targets[].rpy_deg[]", "deg", "", "The target orientation: roll, pitch, yaw."),
     R("targets[].configuration[]", "mixed", r"$q_i$", "The solution's joint values: "

@@ -76,10 +76,20 @@ def test_the_ur5_example_uses_the_numerical_solver_and_the_planar_one_the_closed
     assert [t["reached"] for t in ur5["targets"]] == [True, True, True, True, False]
     assert ur5["targets"][4]["residual"]["position"] > 0.9  # 2 m out, reach about 1 m
     assert ur5["targets"][3]["residual"]["orientation_deg"] is None  # position only
-    assert planar["solver"] == "closed-form planar 3R" and planar["seeds"] is None
+    assert planar["solver"] == "closed-form planar 3R"
     assert planar["arm"]["task_space"] == ["x", "y", "phi"]
     # the point (40, 0) lies 3 beyond the reach 37: the closest answer is stretched out
     assert planar["targets"][5]["residual"]["position"] == pytest.approx(3.0, abs=1e-9)
+
+
+def test_a_target_beyond_a_planar_arms_reach_reports_its_closest_configuration() -> None:
+    """The closed form leaves it; damped least squares finds the arm stretched toward it."""
+    targets = [{"position": [0.0, -45.0]}, {"position": [-30.0, 30.0]}]
+    result = run({"robot": EXAMPLE_1_PLANAR, "targets": targets}).result
+    assert result["solver"] == "closed-form planar 3R"
+    residuals = [t["residual"]["position"] for t in result["targets"]]
+    assert residuals == pytest.approx([45.0 - 37.0, math.hypot(30, 30) - 37.0], abs=1e-6)
+    assert not any(t["reached"] for t in result["targets"])
 
 
 def test_the_same_seed_gives_the_same_result() -> None:

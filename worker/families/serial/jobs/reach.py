@@ -45,16 +45,24 @@ DRAWN = 4
 def solve_targets(
     spec: SerialReachSpec, arm: SerialArm, targets: PoseTargets
 ) -> tuple[str, IKSolution]:
-    """The solver used and its solutions (closed form for a planar 3R arm unless the
-    spec asks for the numerical solver)."""
-    geometry = planar_3r_geometry(arm) if spec.solver == "auto" else None
-    if geometry is not None:
-        return CLOSED_FORM, solve_planar_3r(arm, geometry, targets)
+    """The solver used and its solutions: closed form for a planar 3R arm (unless the
+    spec asks for the numerical solver), whose unreached targets the numerical solver
+    tries too (it finds their closest configuration, and a position-only target whose
+    feasible tool angles fall between the closed form's scan steps)."""
     rng = np.random.default_rng(spec.seed)
-    starts = seed_configurations(arm, targets.count, spec.seeds, rng)
-    solution = solve_damped_least_squares(arm, targets, starts, spec.max_iterations,
-                                          restarts=rng)  # fmt: skip
-    return NUMERICAL, solution
+    geometry = planar_3r_geometry(arm) if spec.solver == "auto" else None
+    if geometry is None:
+        starts = seed_configurations(arm, targets.count, spec.seeds, rng)
+        return NUMERICAL, solve_damped_least_squares(arm, targets, starts,
+                                                     spec.max_iterations, restarts=rng)  # fmt: skip
+    closed = solve_planar_3r(arm, geometry, targets)
+    missing = np.flatnonzero(~closed.reached)
+    if missing.size == 0:
+        return CLOSED_FORM, closed
+    starts = seed_configurations(arm, missing.size, spec.seeds, rng)
+    numerical = solve_damped_least_squares(arm, targets.take(missing), starts,
+                                           spec.max_iterations, restarts=rng)  # fmt: skip
+    return CLOSED_FORM, closed.replaced(missing, numerical)
 
 
 def _maybe(value: float, present: bool) -> float | None:
@@ -124,15 +132,14 @@ def run_serial_reach(spec: SerialReachSpec, ctx: JobContext) -> JobOutcome:
     progress.report(70.0, "indices")
     entries, measure, kappa = _target_entries(spec, arm, targets, solution)
     summary = _summary(solution, measure, kappa)
-    numerical = solver == NUMERICAL
     result = {
         "arm": arm_description(spec.robot, arm),
         "length_unit": spec.length_unit,
         "characteristic_length": spec.characteristic_length,
         "solver": solver,
-        "seeds": spec.seeds if numerical else None,
-        "seed": spec.seed if numerical else None,
-        "max_iterations": spec.max_iterations if numerical else None,
+        "seeds": spec.seeds,
+        "seed": spec.seed,
+        "max_iterations": spec.max_iterations,
         "targets": entries,
         "summary": summary,
     }
@@ -154,7 +161,9 @@ def _notes(spec: SerialReachSpec, solver: str) -> list[str]:
         notes = ["Planar 3R arm: closed-form inverse kinematics (both elbow branches, "
                  "moved into the joint limits by whole turns); a position-only target scans "
                  "the tool angle in 0.2 degree steps and keeps the most manipulable "
-                 "solution."]  # fmt: skip
+                 "solution. Targets the closed form does not reach are tried by damped "
+                 f"least squares too ({spec.seeds} seeded start(s), seed {spec.seed}), for "
+                 "their closest configuration."]  # fmt: skip
     else:
         notes = [f"Damped least squares (Levenberg-Marquardt) from {spec.seeds} seeded "
                  f"start(s) per target (seed {spec.seed}), at most {spec.max_iterations} "

@@ -11,14 +11,15 @@ on the weighted task error ``e`` = [(p_t − p) / L; rotation vector of R_t Rᵀ
 planar arm [(x_t − x) / L, (y_t − y) / L, φ_t − φ wrapped]), ``J`` the task Jacobian
 with the same row weights, ``L`` the length scale (the arm's size, so a length error
 of L weighs as one radian).  Position-only targets weigh the angular rows 0.  The step
-drops the columns of joints held at a limit it pushes against, and is projected onto
-the joint limits (:func:`project_to_limits`: clamped, or wrapped
-for a revolute joint free over a full turn); it is kept when the error drops (λ
-halves), refused otherwise (λ triples).  A seed stops once within both tolerances
-(position in length units, orientation in rad), when λ passes ``MAX_DAMPING`` (stuck),
-or after ``max_iterations``.  Per target, among the seeds that converged the one with
-the largest manipulability is the solution; if none did, the seed with the least
-weighted error (``reached`` False).
+drops the columns of joints held at a limit it pushes against and is projected onto
+the limits (:func:`project_to_limits`: clamped, or wrapped for a revolute joint free
+over a full turn); it is kept when the error drops (λ halves, down to
+``MIN_DAMPING``), refused otherwise (λ triples).  A seed stops once within both
+tolerances (position in length units, orientation in rad), when λ passes
+``MAX_DAMPING`` (stuck), or after ``max_iterations``; with a ``restarts`` generator a
+stuck seed of a target no seed has reached starts again from a fresh draw.  Per
+target, among the seeds that converged the one with the largest manipulability is the
+solution; if none did, the closest configuration any seed found (``reached`` False).
 """
 
 from __future__ import annotations
@@ -73,6 +74,12 @@ class PoseTargets:
         """The number of targets, t."""
         return int(self.positions.shape[0])
 
+    def take(self, which: NDArray[np.intp]) -> PoseTargets:
+        """The targets ``which`` (k,), in that order."""
+        return PoseTargets(self.positions[which], self.rotations[which], self.oriented[which],
+                           self.position_tolerance[which],
+                           self.orientation_tolerance[which])  # fmt: skip
+
 
 @dataclass(frozen=True, eq=False)
 class IKSolution:
@@ -85,6 +92,14 @@ class IKSolution:
     position_residual: FloatArray
     orientation_residual: FloatArray
     solutions: NDArray[np.int64]
+
+    def replaced(self, which: NDArray[np.intp], other: IKSolution) -> IKSolution:
+        """This solution with targets ``which`` (k,) answered by ``other`` (k targets)."""
+        fields = ("q", "reached", "position_residual", "orientation_residual", "solutions")
+        merged = {name: getattr(self, name).copy() for name in fields}
+        for name, values in merged.items():
+            values[which] = getattr(other, name)
+        return IKSolution(**merged)
 
 
 def arm_scale(arm: SerialArm) -> float:
