@@ -47,6 +47,13 @@ def reach_figure(
         ax.set_aspect("equal", adjustable="datalim")
     else:
         ax.set_zlabel(f"$z$ [{length_unit}]")  # type: ignore[union-attr]
+        # one scale on every axis: a cube around the targets and the drawn arms
+        points = np.concatenate([positions, chains.reshape(-1, 3)])
+        centre = 0.5 * (points.max(axis=0) + points.min(axis=0))
+        half = max(0.5 * float(np.ptp(points, axis=0).max()), 1e-9)
+        ax.set_xlim(centre[0] - half, centre[0] + half)
+        ax.set_ylim(centre[1] - half, centre[1] + half)
+        ax.set_zlim(centre[2] - half, centre[2] + half)  # type: ignore[union-attr]
         ax.set_box_aspect((1, 1, 1))  # type: ignore[arg-type]
     share = float(reached.mean()) if reached.size else 0.0
     ax.set_title(f"{arm.joints}-joint arm: {int(reached.sum())} of {reached.size} targets "
