@@ -101,7 +101,10 @@ async def test_every_process_page_renders(asgi_client: httpx.AsyncClient) -> Non
         assert f'href="/v1/processes/{definition.id}"' in listing
         page = (await asgi_client.get(f"/v1/processes/{definition.id}", headers=PAGE)).text
         assert f"<h1>{definition.title.replace(chr(39), '&#39;')}</h1>" in page
-        assert page.count('<form method="post"') == max(1, len(definition.examples))
+        own_arm = "robot" in definition.inputs_schema["properties"]  # "Your own arm"
+        forms = max(1, len(definition.examples)) + own_arm
+        assert page.count('<form method="post"') == forms
+        assert ('id="own-arm"' in page) == own_arm
         assert page.count("Run this example") == max(1, len(definition.examples))
         for name in definition.inputs_schema["properties"]:
             assert f"<code>{name}</code>" in page, (definition.id, name)
