@@ -13,11 +13,18 @@ from worker.contract import JobContext, JobOutcome
 from worker.families.serial.costs import (
     INDICES_COST_LIMIT,
     INDICES_SYNC_COST_LIMIT,
+    REACH_COST_LIMIT,
+    REACH_SYNC_COST_LIMIT,
     TIME_LIMIT_S,
     indices_cost,
+    reach_cost,
 )
-from worker.families.serial.examples import SERIAL_INDICES_EXAMPLES
-from worker.families.serial.result_paths import SERIAL_INDICES_RESULT_PATHS
+from worker.families.serial.examples import SERIAL_INDICES_EXAMPLES, SERIAL_REACH_EXAMPLES
+from worker.families.serial.reach_spec import MAX_TARGETS, SerialReachSpec
+from worker.families.serial.result_paths import (
+    SERIAL_INDICES_RESULT_PATHS,
+    SERIAL_REACH_RESULT_PATHS,
+)
 from worker.families.serial.specs import MAX_CONFIGURATIONS, SerialIndicesSpec
 from worker.processes import FamilyInfo, ProcessDefinition, figure_files
 
@@ -73,30 +80,6 @@ SERIAL_INDICES = ProcessDefinition(
     time_limit_s=TIME_LIMIT_S,
 )
 
-#: Who this family is: the tag its operations are listed under, and its sources.
-FAMILY = FamilyInfo(
-    name="serial",
-    tag="Serial arms of your own (DH or URDF)",
-    description=(
-        "Any serial arm given as a DH table or a URDF: poses, Jacobians and dexterity "
-        "indices, checked against the Robotics Toolbox for Python."
-    ),
-    paper="the arm's published DH table",
-)
-
-# --- serial-reach ----------------------------------------------------------------------
-from worker.families.serial.costs import (  # noqa: E402
-    REACH_COST_LIMIT,
-    REACH_SYNC_COST_LIMIT,
-    reach_cost,
-)
-from worker.families.serial.examples import SERIAL_REACH_EXAMPLES  # noqa: E402
-from worker.families.serial.reach_spec import (  # noqa: E402
-    MAX_TARGETS,
-    SerialReachSpec,
-)
-from worker.families.serial.result_paths import SERIAL_REACH_RESULT_PATHS  # noqa: E402
-
 
 def _run_serial_reach(spec: SerialReachSpec, ctx: JobContext) -> JobOutcome:
     # lazy: the job module (matplotlib) loads when a job runs, not with the registry
@@ -148,6 +131,17 @@ SERIAL_REACH = ProcessDefinition(
     seconds_per_cost=1.5e-6,
     seconds_per_run=0.05,
     time_limit_s=TIME_LIMIT_S,
+)
+
+#: Who this family is: the tag its operations are listed under, and its sources.
+FAMILY = FamilyInfo(
+    name="serial",
+    tag="Serial arms of your own (DH or URDF)",
+    description=(
+        "Any serial arm given as a DH table or a URDF: poses, Jacobians and dexterity "
+        "indices, checked against the Robotics Toolbox for Python."
+    ),
+    paper="the arm's published DH table",
 )
 
 #: This family's processes, in the order GET /v1/processes lists them.
