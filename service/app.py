@@ -37,7 +37,7 @@ from service.pages import routes as v1_pages
 from service.problems import PROBLEM_TYPES, problem_response
 from service.request_guard import RequestGuard
 from service.request_id import RequestId
-from service.routes import health, job_events, jobs, landing, processes, reuse
+from service.routes import designs, health, job_events, jobs, landing, processes, reuse
 from service.routes.process_operations import (
     execution_router,
     family_of,
@@ -52,6 +52,7 @@ from worker.registry import default_registry
 from worker.retention import RetentionSweeper
 from worker.store import open_store
 from worker.store.base import JobStore
+from worker.studies.design_table import DesignTables
 
 if TYPE_CHECKING:
     from worker.dispatch.celery.dispatch import Sweeper
@@ -113,6 +114,7 @@ def create_app(settings: Settings, *, registry: ProcessRegistry | None = None) -
         app.state.pool = pool
         app.state.dispatcher = dispatcher
         app.state.watcher = JobWatcher(store)
+        app.state.design_tables = DesignTables()  # studies' designs, read once per file
         app.state.watcher.start()
         if metrics is not None:  # job figures from the store, whoever runs the jobs
             metrics.watch_store(store, [d.id for d in registry],
@@ -192,6 +194,7 @@ def create_app(settings: Settings, *, registry: ProcessRegistry | None = None) -
     app.include_router(execution_router(registry))
     app.include_router(processes.router)
     app.include_router(jobs.router)
+    app.include_router(designs.router)
     app.include_router(reuse.router)
     app.include_router(health.router)
     app.include_router(landing.router)
