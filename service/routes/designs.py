@@ -13,7 +13,7 @@ from typing import Annotated, Any
 from urllib.parse import urlencode
 
 from fastapi import APIRouter, Query, Request
-from pydantic import BaseModel, ConfigDict, Field
+from pydantic import AfterValidator, BaseModel, ConfigDict, Field
 from starlette.concurrency import run_in_threadpool
 
 from service.deps import ApiDep
@@ -28,6 +28,7 @@ from worker.studies.design_table import (
     DesignTables,
     design_page,
     design_scatter,
+    read_cursor,
 )
 
 __all__ = ["DesignPage", "DesignScatter", "router"]
@@ -96,6 +97,20 @@ class DesignScatter(_Document):
     bins: ScatterBins | None = Field(description="Beyond 10,000 designs: 100 x 100 bins.")
 
 
+def _cursor(value: str | None) -> str | None:
+    if value is not None:
+        try:
+            read_cursor(value)
+        except DesignQueryError as exc:
+            raise ValueError(str(exc)) from None
+    return value
+
+
+Cursor = Annotated[
+    str | None,
+    Query(max_length=500, description="Where a `next` link continues."),
+    AfterValidator(_cursor),
+]
 Sort = Annotated[
     str | None,
     Query(pattern=_KEY, description="A column key (`-` first: descending); designs without "
@@ -183,7 +198,7 @@ async def get_designs(
     request: Request,
     api: ApiDep,
     limit: Annotated[int, Query(ge=1, le=1000)] = 100,
-    cursor: Annotated[str | None, Query(max_length=500, description="From a `next` link.")] = None,
+    cursor: Cursor = None,
     sort: Sort = None,
     feasible: Feasible = None,
     pareto: Pareto = None,

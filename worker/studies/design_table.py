@@ -36,6 +36,7 @@ __all__ = [
     "DesignTables",
     "design_page",
     "design_scatter",
+    "read_cursor",
 ]
 
 #: Beyond this many designs the scatter is answered as 2-D bins (and the front).
@@ -195,15 +196,20 @@ def _cursor(offset: int, query: DesignQuery) -> str:
     return base64.urlsafe_b64encode(raw).decode().rstrip("=")
 
 
-def _offset(cursor: str | None, query: DesignQuery) -> int:
-    if cursor is None:
-        return 0
+def read_cursor(cursor: str) -> tuple[int, str]:
+    """(offset, query digest) of a cursor :func:`design_page` gave."""
     try:
         raw = base64.urlsafe_b64decode(cursor + "=" * (-len(cursor) % 4))
         state = json.loads(raw)
-        offset, digest = int(state["o"]), str(state["q"])
+        return int(state["o"]), str(state["q"])
     except (ValueError, KeyError, TypeError) as exc:
         raise DesignQueryError("cursor", "not a cursor this service gave") from exc
+
+
+def _offset(cursor: str | None, query: DesignQuery) -> int:
+    if cursor is None:
+        return 0
+    offset, digest = read_cursor(cursor)
     if digest != query.digest() or offset < 0:
         raise DesignQueryError("cursor", "this cursor belongs to another sort or filter: "
                                "start again without it")  # fmt: skip
