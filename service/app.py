@@ -31,6 +31,7 @@ from service.pages import (
     login,
     methods,
     queue_page,
+    study_actions,
     workflow,
 )
 from service.pages import routes as v1_pages
@@ -207,6 +208,7 @@ def create_app(settings: Settings, *, registry: ProcessRegistry | None = None) -
     app.include_router(methods.router)
     app.include_router(actions.router)
     app.include_router(workflow.router)
+    app.include_router(study_actions.router)
     app.include_router(queue_page.router)
     app.include_router(login.router)
     app.mount(STATIC_PREFIX, StaticFiles(directory=STATIC_DIR), name="pages-static")

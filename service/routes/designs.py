@@ -18,14 +18,12 @@ from starlette.concurrency import run_in_threadpool
 
 from service.deps import ApiDep
 from service.problems import parameter_error
-from service.routes.jobs import finished_job
 from service.schemas import Link
-from worker.errors import JobDismissed, NoSuchArtifact
+from service.study_tables import study_table
 from worker.studies.design_table import (
     DesignQuery,
     DesignQueryError,
     DesignTable,
-    DesignTables,
     design_page,
     design_scatter,
     read_cursor,
@@ -141,24 +139,6 @@ def _query(sort: str | None, feasible: bool | None, pareto: bool | None,
     return DesignQuery(sort, feasible, pareto, tuple(parsed), reason)
 
 
-def _table(request: Request, api: ApiDep, job_id: str) -> tuple[str, DesignTable]:
-    """The study's process and its table (read once per stored file)."""
-    job = finished_job(api.store, job_id, api.identity.owner_scope)
-    stored = api.store.artifact(job.job_id, "designs.npz")
-    result = api.store.get_result(job.job_id) or {}
-    if job.process_id != "design-study" or stored is None:
-        raise NoSuchArtifact(f"Job {job_id} is not a design study: it has no designs.")
-
-    def read() -> bytes:
-        try:
-            return b"".join(api.store.artifact_chunks(job.job_id, stored))
-        except FileNotFoundError as exc:
-            raise JobDismissed(f"Job {job_id} was dismissed; it has no results.") from exc
-
-    tables: DesignTables = request.app.state.design_tables
-    return str(result.get("process", "")), tables.get(stored.etag, read)
-
-
 def _descriptions(api: ApiDep, process_id: str) -> dict[str, str]:
     definition = api.registry.get(process_id)
     if definition is None:
@@ -206,7 +186,9 @@ async def get_designs(
     reason: Reason = None,
 ) -> DesignPage:
     query = _query(sort, feasible, pareto, ranges, reason)
-    process_id, table = await run_in_threadpool(_table, request, api, job_id)
+    process_id, table = await run_in_threadpool(
+        study_table, request.app.state.design_tables, api, job_id
+    )
     try:
         page = await run_in_threadpool(design_page, table, query, limit, cursor)
     except DesignQueryError as exc:
@@ -242,7 +224,7 @@ async def get_design_scatter(
     reason: Reason = None,
 ) -> DesignScatter:
     query = _query(None, feasible, pareto, ranges, reason)
-    _, table = await run_in_threadpool(_table, request, api, job_id)
+    _, table = await run_in_threadpool(study_table, request.app.state.design_tables, api, job_id)
     try:
         answer = await run_in_threadpool(design_scatter, table, x, y, query)
     except DesignQueryError as exc:

@@ -164,7 +164,8 @@ def _mask(table: DesignTable, query: DesignQuery) -> NDArray[np.bool_]:
                                    f"{', '.join(table.reason_codes[1:])}")  # fmt: skip
         keep &= table.reason_code == table.reason_codes.index(query.reason)
     for key, low, high in query.ranges:
-        values = table.values[:, table.column(key, "range")]
+        values = (table.index.astype(float) if key == "index"
+                  else table.values[:, table.column(key, "range")])  # fmt: skip
         with np.errstate(invalid="ignore"):
             if low is not None:
                 keep &= values >= low
