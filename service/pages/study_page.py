@@ -25,6 +25,7 @@ from worker.studies.design_table import (
     DesignTables,
     design_page,
 )
+from worker.studies.reason_groups import reason_groups
 
 __all__ = ["PAGE_ROWS", "study_context"]
 
@@ -119,7 +120,7 @@ def study_context(
     if job.status in (JobStatus.ACCEPTED, JobStatus.RUNNING):
         study["chunks"] = _chunks(api, job)
     if result is not None and job.status is JobStatus.SUCCESSFUL:
-        study["reasons"] = list(result.get("infeasible_reasons") or [])
+        study["reasons"] = reason_groups(result.get("infeasible_reasons") or [])
         tables: DesignTables = request.app.state.design_tables
         params = {k: v for k, v in request.query_params.items() if k in _FILTERS}
         _, table = study_table(tables, api, job.job_id)

@@ -28,8 +28,9 @@ from worker.studies.design_table import (
     design_scatter,
     read_cursor,
 )
+from worker.studies.reason_groups import reason_groups
 
-__all__ = ["DesignPage", "DesignScatter", "router"]
+__all__ = ["DesignPage", "DesignScatter", "ReasonGroups", "router"]
 
 router = APIRouter(prefix="/v1/jobs", tags=["jobs"])
 
@@ -109,6 +110,24 @@ Cursor = Annotated[
     Query(max_length=500, description="Where a `next` link continues."),
     AfterValidator(_cursor),
 ]
+
+
+class ReasonGroup(_Document):
+    reason_code: str = Field(description="refused, no-value or failed.")
+    reason_field: str = Field(description="The input a refusal names; '' if none.")
+    reason: str = Field(description="The message with the numbers it quotes as '…'.")
+    example: str = Field(description="The group's most frequent message, numbers and all.")
+    messages: int = Field(description="Distinct messages in the group.")
+    designs: int = Field(description="Infeasible designs in the group.")
+
+
+class ReasonGroups(_Document):
+    """``GET /v1/jobs/{jobID}/designs/reasons``."""
+
+    jobID: str
+    groups: list[ReasonGroup] = Field(description="Most designs first.")
+
+
 Sort = Annotated[
     str | None,
     Query(pattern=_KEY, description="A column key (`-` first: descending); designs without "
@@ -230,3 +249,17 @@ async def get_design_scatter(
     except DesignQueryError as exc:
         raise parameter_error("query", exc.parameter, str(exc)) from None
     return DesignScatter(jobID=job_id, **answer)
+
+
+@router.get(
+    "/{job_id}/designs/reasons",
+    summary="A design study's infeasible designs grouped by reason, with counts",
+    response_model=ReasonGroups,
+)
+def get_design_reasons(job_id: str, request: Request, api: ApiDep) -> ReasonGroups:
+    """Reasons differing only in the numbers they quote are one group (from the
+    study's ``infeasible_reasons``, which keeps its most frequent messages)."""
+    study_table(request.app.state.design_tables, api, job_id)  # the caller's finished study
+    result = api.store.get_result(job_id) or {}
+    groups = reason_groups(result.get("infeasible_reasons") or [])
+    return ReasonGroups(jobID=job_id, groups=[ReasonGroup(**g) for g in groups])

@@ -85,3 +85,16 @@ async def test_bad_queries_and_jobs_without_designs_are_problems(tmp_path: Path)
         s.drain()
         none = await s.client.get(f"/v1/jobs/{other['jobID']}/designs", headers=key(ALICE))
         assert none.status_code == 404 and "not a design study" in none.json()["detail"]
+
+
+async def test_infeasible_designs_are_grouped_by_reason(tmp_path: Path) -> None:
+    async with service(tmp_path, "owner") as s:
+        url = "/v1/processes/design-study/execution"
+        job = (await s.client.post(url, json={"inputs": STUDY}, headers=key(ALICE))).json()
+        s.drain()
+        reasons = f"/v1/jobs/{job['jobID']}/designs/reasons"
+        (group,) = (await s.client.get(reasons, headers=key(ALICE))).json()["groups"]
+        assert (group["reason_code"], group["reason_field"], group["designs"]) == (
+            "refused", "inputs.links[0]", 10)  # fmt: skip
+        assert "…" in group["reason"] and "0.000001" in group["example"]
+        assert (await s.client.get(reasons, headers=key(BOB))).status_code == 404
