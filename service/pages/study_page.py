@@ -17,6 +17,7 @@ from fastapi import Request
 from service.deps import Api
 from service.study_tables import STUDY_PROCESS, study_table
 from worker.contract import JobRecord, JobStatus
+from worker.result_paths import plain_symbol
 from worker.store.records import JobFilter
 from worker.studies.design_table import (
     DesignQuery,
@@ -33,7 +34,7 @@ __all__ = ["PAGE_ROWS", "study_context"]
 PAGE_ROWS = 25
 #: Chunk jobs listed while a study runs (the first ones).
 LISTED_CHUNKS = 200
-_FILTERS = ("sort", "feasible", "pareto", "cursor")
+_FILTERS = ("sort", "feasible", "pareto", "reason", "cursor")
 
 
 def _flag(value: str | None) -> bool | None:
@@ -45,7 +46,7 @@ def _number(value: float | None) -> str:
 
 
 def _label(column: Any) -> str:
-    name = column.symbol or column.path
+    name = plain_symbol(column.symbol) if column.symbol else column.path
     return name if column.unit in ("", "-") else f"{name} [{column.unit}]"
 
 
@@ -58,7 +59,8 @@ def _chunks(api: Api, job: JobRecord) -> list[dict[str, str]]:
 
 def _table_context(job: JobRecord, table: DesignTable, params: Mapping[str, str]) -> dict[str, Any]:
     query = DesignQuery(sort=params.get("sort") or None, feasible=_flag(params.get("feasible")),
-                        pareto=_flag(params.get("pareto")))  # fmt: skip
+                        pareto=_flag(params.get("pareto")),
+                        reason=params.get("reason") or None)  # fmt: skip
     notice = ""
     try:
         page = design_page(table, query, PAGE_ROWS, params.get("cursor") or None)
@@ -67,7 +69,7 @@ def _table_context(job: JobRecord, table: DesignTable, params: Mapping[str, str]
         query = DesignQuery()
         page = design_page(table, query, PAGE_ROWS, None)
     base = f"/v1/jobs/{job.job_id}"
-    kept = {k: v for k, v in params.items() if k in ("feasible", "pareto") and v}
+    kept = {k: v for k, v in params.items() if k in ("feasible", "pareto", "reason") and v}
 
     def href(**change: str) -> str:
         merged = {**kept, **({"sort": query.sort} if query.sort else {}), **change}
@@ -98,6 +100,7 @@ def _table_context(job: JobRecord, table: DesignTable, params: Mapping[str, str]
         "filters": {
             "feasible": params.get("feasible", ""),
             "pareto": params.get("pareto", ""),
+            "reason": query.reason or "",
             "sort": query.sort or "",
         },
         "notice": notice,

@@ -14,7 +14,9 @@
   const actions = document.getElementById("design-actions");
   const jobId = section.dataset.job;
   const state = new URLSearchParams(window.location.search);
-  ["feasible", "pareto", "sort"].forEach((k) => { if (!state.get(k)) state.delete(k); });
+  for (const k of [...state.keys()]) {
+    if (!["feasible", "pareto", "sort", "reason"].includes(k) || !state.get(k)) state.delete(k);
+  }
   state.delete("cursor");
   let columns = [];
 
@@ -135,8 +137,8 @@
   const filters = document.getElementById("design-filters");
   filters.addEventListener("submit", (e) => {
     e.preventDefault();
-    ["feasible", "pareto"].forEach((k) => {
-      const v = filters.elements[k].value;
+    ["feasible", "pareto", "reason"].forEach((k) => {
+      const v = filters.elements[k] ? filters.elements[k].value : "";
       if (v) state.set(k, v); else state.delete(k);
     });
     state.delete("cursor");

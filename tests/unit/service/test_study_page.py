@@ -52,6 +52,8 @@ async def test_the_study_page_explores_its_designs_without_javascript(tmp_path: 
         refused = (await s.client.get(f"/v1/jobs/{job['jobID']}?feasible=false",
                                       headers=headers)).text  # fmt: skip
         assert len(rows(refused)) == 10 and "refused (inputs.links[0])" in refused
+        by_reason = html.unescape(re.search(r'href="([^"]+reason=refused[^"]*)"', page).group(1))
+        assert len(rows((await s.client.get(by_reason, headers=headers)).text)) == 10
         odd = (await s.client.get(f"/v1/jobs/{job['jobID']}?sort=nope", headers=headers)).text
         assert "no column 'nope'" in html.unescape(odd) and len(rows(odd)) == 25
         design = first[0]
