@@ -134,13 +134,13 @@ async def run_process(process_id: str, request: Request, api: ApiDep) -> Respons
         extra["own_arm"] = own_arm_form(definition, form, problem)
     else:
         examples[index].update(text=text, problem=problem, rows=max(examples[index]["rows"], 8))
-    page = await run_in_threadpool(
-        partial(views.process_page, examples=examples, status_code=problem["status"], extra=extra),
-        request,
-        api.pages,
-        registry,
-        definition,
-    )
+    if process_id == STUDY_PROCESS:  # the study's page keeps its builder
+        draw = partial(study_builder_page, params={}, examples=examples,
+                       status_code=problem["status"])  # fmt: skip
+    else:
+        draw = partial(views.process_page, examples=examples, status_code=problem["status"],
+                       extra=extra)  # fmt: skip
+    page = await run_in_threadpool(draw, request, api.pages, registry, definition)
     if retry_after is not None:
         page.headers["Retry-After"] = retry_after
     return page

@@ -15,14 +15,14 @@ What the form offers comes from the registry (:mod:`worker.studies.builder`).
 
 from __future__ import annotations
 
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 from typing import Any
 
 from fastapi import Request
 from fastapi.responses import HTMLResponse
 
 from service.pages.renderer import Pages
-from service.pages.views import process_page
+from service.pages.views import ExampleForm, process_page
 from worker.processes import ProcessDefinition, ProcessRegistry
 from worker.result_paths import plain_symbol
 from worker.studies.builder import (
@@ -65,16 +65,20 @@ def _shown(value: float) -> str:
     return f"{value:.6g}"
 
 
-def _default_range(value: float) -> tuple[str, str]:
-    """From 20 % below to 20 % above the example's value (-1 to 1 around zero)."""
+def _default_range(number: NumericInput) -> tuple[str, str]:
+    """From 20 % below to 20 % above the example's value (-1 to 1 around zero), whole
+    numbers for a whole number."""
+    value = number.value
     if value == 0:
         return "-1", "1"
     low, high = sorted((value * 0.8, value * 1.2))
+    if number.whole:
+        return str(round(low)), str(round(high))
     return _shown(low), _shown(high)
 
 
 def _input_row(number: NumericInput, params: Mapping[str, str]) -> dict[str, Any]:
-    low, high = _default_range(number.value)
+    low, high = _default_range(number)
     path = number.path
     return {
         "path": path,
@@ -226,9 +230,12 @@ def study_builder_page(
     params: Mapping[str, str],
     *,
     problem: dict[str, Any] | None = None,
+    examples: Sequence[ExampleForm] | None = None,
+    status_code: int | None = None,
 ) -> HTMLResponse:
     """The ``design-study`` page with the builder at the choices ``params``; a refused
-    study's ``problem`` shown on it (its status the page's)."""
+    study's ``problem`` shown on it (its status the page's).  ``examples`` and
+    ``status_code``: a refused JSON form's, drawn below the builder."""
     state = builder_state(registry, params)
     invalid = _invalid_paths(problem)
     for row in state["inputs"]:
@@ -236,6 +243,8 @@ def study_builder_page(
     for row in state["objectives"]:
         row["invalid"] = any(name.split("|")[0] == row["path"] for name in invalid)
     state["problem"] = problem
-    status = int(problem.get("status", 422)) if problem else 200
-    return process_page(request, pages, registry, definition, status_code=status,
-                        template="study_process.html", extra={"builder": state})  # fmt: skip
+    if status_code is None:
+        status_code = int(problem.get("status", 422)) if problem else 200
+    return process_page(request, pages, registry, definition, examples=examples,
+                        status_code=status_code, template="study_process.html",
+                        extra={"builder": state})  # fmt: skip

@@ -171,3 +171,20 @@ async def test_an_unknown_process_or_a_foreign_post_is_refused(
     assert r.status_code == 422 and "process" in r.text
     r = await asgi_client.post(BUILD, data=tiny_study(), headers={"Origin": "http://evil.example"})
     assert r.status_code == 403
+
+
+async def test_a_refused_json_study_keeps_the_builder_on_its_page(
+    asgi_client: httpx.AsyncClient,
+) -> None:
+    r = await asgi_client.post(
+        "/pages/processes/design-study/run", data={"inputs": "{"}, headers=SAME_ORIGIN
+    )
+    assert r.status_code == 400
+    assert "not valid JSON" in r.text and 'id="builder-step-1"' in r.text
+
+
+async def test_a_whole_number_gets_a_whole_default_range(asgi_client: httpx.AsyncClient) -> None:
+    html = await step(asgi_client, process="planar3r-dexterity-map", example="0")
+    assert 'name="from.grid.points_per_axis" value="161"' in html
+    assert 'name="to.grid.points_per_axis" value="241"' in html
+    assert 'name="from.trajectory.polynomial[0]" value="-0.27504"' in html

@@ -80,3 +80,16 @@ def test_a_designer_builds_and_runs_a_study_without_writing_json(
         assert status["processID"] == "design-study"
         assert offline.external == []
         assert offline.console_errors == []
+
+
+def test_the_builder_fits_a_phone(server: Deployment, browser: Any) -> None:
+    """At 390 px every step shows without the page scrolling sideways (the tables scroll
+    in their own box)."""
+    query = ("process=planar3r-dexterity-map&example=1&vary.links%5B0%5D=on"
+             "&step=objectives")  # fmt: skip
+    with open_page(browser, width=390, height=800) as offline:
+        page = offline.page
+        page.goto(f"{server.base_url}/v1/processes/design-study?{query}")
+        assert page.locator("#builder-step-4").is_visible()
+        width = page.evaluate("document.documentElement.scrollWidth")
+        assert width <= 390, f"the builder is {width} px wide at 390 px"

@@ -49,11 +49,13 @@ _NAME = re.compile(r"^[A-Za-z_][A-Za-z0-9_]*$")
 @dataclass(frozen=True)
 class NumericInput:
     """A number in an example's inputs: its input path (``links[0]``), value and unit
-    (``deg``, the example's ``length_unit``, or ``-``)."""
+    (``deg``, the example's ``length_unit``, or ``-``); ``whole``: written as a whole
+    number (an integer input, as like as not: a grid's points per axis)."""
 
     path: str
     value: float
     unit: str
+    whole: bool = False
 
 
 @dataclass(frozen=True)
@@ -125,11 +127,11 @@ def studied_processes(registry: ProcessRegistry) -> list[ProcessDefinition]:
     return [d for d in registry if d.id not in NOT_STUDIED]
 
 
-def _leaves(value: Any, path: str) -> Iterator[tuple[str, float]]:
+def _leaves(value: Any, path: str) -> Iterator[tuple[str, int | float]]:
     if isinstance(value, bool):
         return
     if isinstance(value, int | float):
-        yield path, float(value)
+        yield path, value
     elif isinstance(value, Mapping):
         for key, item in value.items():
             if isinstance(key, str) and _NAME.match(key):
@@ -149,7 +151,8 @@ def numeric_inputs(
     for path, value in _leaves(dict(inputs), ""):
         if not takes_number(schema, parse_input_path(path)):
             continue
-        found.append(NumericInput(path, value, parameter_unit(definition, path, inputs)))
+        unit = parameter_unit(definition, path, inputs)
+        found.append(NumericInput(path, float(value), unit, isinstance(value, int)))
         if len(found) == MAX_OFFERED_INPUTS:
             break
     return tuple(found)
