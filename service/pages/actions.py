@@ -8,7 +8,7 @@
   (in the form it came from: "Edit and run again" when the field ``from`` names the job
   it came from).
 - ``POST /pages/processes/design-study/build``: the study builder's choices
-  (:mod:`service.pages.study_builder`) as the inputs of a ``design-study``, submitted
+  (:mod:`service.pages.builder_form`) as the inputs of a ``design-study``, submitted
   like the JSON form's; a refusal comes back on the builder with its fields.
 - ``POST /pages/jobs/{jobID}/dismiss``: cancel a queued or running job, or delete a
   finished one's results, then back to the job's page (303).
@@ -35,16 +35,16 @@ from service.documents import job_href
 from service.errors import dexlab_problem
 from service.job_lookup import missing_job
 from service.pages import views
-from service.pages.forms import check_csrf, check_form_origin, read_form
-from service.pages.job_forms import rerun_form
-from service.pages.own_arm import own_arm_form, robot_from_form
-from service.pages.study_builder import (
+from service.pages.builder_form import (
     BUILD_ACTION,
     MAX_BUILDER_FIELDS,
     STUDY_PROCESS,
     chosen_study,
     study_builder_page,
 )
+from service.pages.forms import check_csrf, check_form_origin, read_form
+from service.pages.job_forms import rerun_form
+from service.pages.own_arm import own_arm_form, robot_from_form
 from service.problems import problem_document
 from service.request_guard import json_depth
 from worker.errors import (

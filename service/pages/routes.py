@@ -14,8 +14,8 @@ from fastapi.responses import HTMLResponse
 from service.deps import Api, ApiDep
 from service.job_lookup import find_job, list_jobs
 from service.pages import views
+from service.pages.builder_form import STUDY_PROCESS, study_builder_page
 from service.pages.html_route import page_router
-from service.pages.study_builder import STUDY_PROCESS, study_builder_page
 from service.pages.study_page import study_context
 from service.parameters import JobListQueryDep
 from worker.contract import JobStatus

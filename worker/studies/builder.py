@@ -1,7 +1,7 @@
 """What the study builder form offers, and the study its choices spell.
 
 The ``design-study`` process page builds a study in four steps (the pages draw them,
-:mod:`service.pages.study_builder`): the process, one of its worked examples, the
+:mod:`service.pages.builder_form`): the process, one of its worked examples, the
 example's numeric inputs to vary, and objectives among the process's result paths.
 This module reads all of that from a registry: :func:`studied_processes` lists the
 processes a study can run, :func:`builder_options` one process's examples with their
