@@ -46,6 +46,7 @@ NOT_A_DOCUMENT: dict[tuple[str, str], str] = {
     ("POST", "/login"): "a redirect or a page",
     ("POST", "/logout"): "a redirect",
     ("POST", "/pages/processes/{process_id}/run"): "a redirect or a page",
+    ("POST", "/pages/processes/design-study/build"): "a redirect or the study builder page",
     ("POST", "/pages/jobs/{job_id}/dismiss"): "a redirect",
     ("GET", "/pages/jobs/{job_id}/edit"): "a page (the process form, pre-filled)",
     ("GET", "/pages/jobs/{job_id}/dismiss"): "a page asking to confirm, or a redirect",

@@ -7,6 +7,9 @@
   do not validate, re-render the process page with the problem and the user's text kept
   (in the form it came from: "Edit and run again" when the field ``from`` names the job
   it came from).
+- ``POST /pages/processes/design-study/build``: the study builder's choices
+  (:mod:`service.pages.builder_form`) as the inputs of a ``design-study``, submitted
+  like the JSON form's; a refusal comes back on the builder with its fields.
 - ``POST /pages/jobs/{jobID}/dismiss``: cancel a queued or running job, or delete a
   finished one's results, then back to the job's page (303).
 
@@ -32,6 +35,13 @@ from service.documents import job_href
 from service.errors import dexlab_problem
 from service.job_lookup import missing_job
 from service.pages import views
+from service.pages.builder_form import (
+    BUILD_ACTION,
+    MAX_BUILDER_FIELDS,
+    STUDY_PROCESS,
+    chosen_study,
+    study_builder_page,
+)
 from service.pages.forms import check_csrf, check_form_origin, read_form
 from service.pages.job_forms import rerun_form
 from service.pages.own_arm import own_arm_form, robot_from_form
@@ -124,13 +134,53 @@ async def run_process(process_id: str, request: Request, api: ApiDep) -> Respons
         extra["own_arm"] = own_arm_form(definition, form, problem)
     else:
         examples[index].update(text=text, problem=problem, rows=max(examples[index]["rows"], 8))
+    if process_id == STUDY_PROCESS:  # the study's page keeps its builder
+        draw = partial(study_builder_page, params={}, examples=examples,
+                       status_code=problem["status"])  # fmt: skip
+    else:
+        draw = partial(views.process_page, examples=examples, status_code=problem["status"],
+                       extra=extra)  # fmt: skip
+    page = await run_in_threadpool(draw, request, api.pages, registry, definition)
+    if retry_after is not None:
+        page.headers["Retry-After"] = retry_after
+    return page
+
+
+@router.post(BUILD_ACTION.removeprefix(router.prefix))
+async def build_study(request: Request, api: ApiDep) -> Response:
+    check_form_origin(request)
+    definition = api.registry.require(STUDY_PROCESS)
+    form = await read_form(request, max_fields=MAX_BUILDER_FIELDS)
+    check_csrf(request, form)
+    inputs = chosen_study(api.registry, form)
+    retry_after: str | None = None
+    if inputs is None:
+        problem = problem_document(
+            "invalid-inputs",
+            detail="Choose a process a study can run and one of its worked examples first.",
+            errors=[{"field": "process", "type": "value_error",
+                     "message": "not a process and worked example the builder offers"}],
+        )  # fmt: skip
+    else:
+        try:
+            job, _ = await run_in_threadpool(
+                submit, api.store, api.registry, api.settings, STUDY_PROCESS, inputs, None,
+                api.dispatcher, api.identity.name,
+            )  # fmt: skip
+        except InvalidInputs as exc:
+            problem = problem_document("invalid-inputs", detail=exc.detail, errors=exc.errors)
+        except CostLimitExceeded as exc:
+            problem = problem_document("cost-limit-exceeded", detail=exc.detail)
+        except (QuotaExceeded, QueueFull) as exc:
+            answer = dexlab_problem(request, exc)
+            problem = json.loads(bytes(answer.body))
+            retry_after = answer.headers.get("Retry-After")
+        else:
+            return RedirectResponse(job_href(job.job_id), status_code=303)
     page = await run_in_threadpool(
-        partial(views.process_page, examples=examples, status_code=problem["status"], extra=extra),
-        request,
-        api.pages,
-        registry,
-        definition,
-    )
+        partial(study_builder_page, problem=problem),
+        request, api.pages, api.registry, definition, form,
+    )  # fmt: skip
     if retry_after is not None:
         page.headers["Retry-After"] = retry_after
     return page

@@ -101,10 +101,10 @@ def check_form_origin(request: Request) -> None:
         )
 
 
-async def read_form(request: Request) -> dict[str, str]:
+async def read_form(request: Request, *, max_fields: int = _MAX_FIELDS) -> dict[str, str]:
     """The fields of a URL-encoded form (a field given twice: its last value; an empty
-    body: no fields).  400 for another body type, a body that is not UTF-8, or too many
-    fields."""
+    body: no fields).  400 for another body type, a body that is not UTF-8, or more than
+    ``max_fields`` fields."""
     body = await request.body()
     if not body:  # a form without fields
         return {}
@@ -114,10 +114,10 @@ async def read_form(request: Request) -> dict[str, str]:
     try:
         text = body.decode("utf-8")
         pairs = parse_qsl(
-            text, keep_blank_values=True, strict_parsing=False, max_num_fields=_MAX_FIELDS
+            text, keep_blank_values=True, strict_parsing=False, max_num_fields=max_fields
         )
     except UnicodeDecodeError as exc:
         raise HTTPException(400, detail=f"The form is not valid UTF-8: {exc.reason}.") from exc
     except ValueError as exc:
-        raise HTTPException(400, detail=f"The form has more than {_MAX_FIELDS} fields.") from exc
+        raise HTTPException(400, detail=f"The form has more than {max_fields} fields.") from exc
     return dict(pairs)

@@ -14,6 +14,7 @@ from fastapi.responses import HTMLResponse
 from service.deps import Api, ApiDep
 from service.job_lookup import find_job, list_jobs
 from service.pages import views
+from service.pages.builder_form import STUDY_PROCESS, study_builder_page
 from service.pages.html_route import page_router
 from service.pages.study_page import study_context
 from service.parameters import JobListQueryDep
@@ -41,6 +42,9 @@ def process_list(request: Request, api: ApiDep) -> HTMLResponse:
 @router.get("/v1/processes/{process_id}")
 def process(process_id: str, request: Request, api: ApiDep) -> HTMLResponse:
     definition = api.registry.require(process_id)
+    if process_id == STUDY_PROCESS:  # with the study builder, at the choices so far
+        params = dict(request.query_params)
+        return study_builder_page(request, api.pages, api.registry, definition, params)
     return views.process_page(request, api.pages, api.registry, definition)
 
 
