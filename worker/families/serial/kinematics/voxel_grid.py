@@ -90,7 +90,8 @@ def voxel_grid(
         ranges = [(float(b[0]), float(b[1])) for b in bounds[:dims]]
     axes = []
     for lo, hi in ranges:
-        first, last = math.ceil(lo / voxel_size - 1e-9), math.floor(hi / voxel_size + 1e-9)
+        # the nodes whose cells meet [lo, hi]
+        first, last = math.floor(lo / voxel_size + 0.5), math.ceil(hi / voxel_size - 0.5)
         axes.append(np.arange(first, max(last, first) + 1, dtype=np.float64) * voxel_size)
     return VoxelGrid(axes=tuple(axes), size=voxel_size)
 
