@@ -96,7 +96,7 @@ SERIAL_WORKSPACE_MAP_RESULT_PATHS = (
     R("summary.reached_voxels", "-", "", "Voxels with at least one sample."),
     R("summary.reached_volume", "length^3", "$V$", "Reached voxels x voxel volume (a "
       "planar arm: reached pixels x pixel area, length^2)."),
-    R("summary.mean_reachability_index", "-", r"$\bar{r}$", "Mean over the reached voxels "
+    R("summary.mean_reachability_index", "-", r"$r$", "Mean over the reached voxels "
       "of the fraction of orientation bins reached."),
     R("summary.full_orientation_voxels", "-", "", "Voxels reaching every orientation bin."),
     R("summary.manipulability_min", "mixed", r"$w_{\min}$", "The least manipulability "
@@ -110,7 +110,7 @@ SERIAL_WORKSPACE_MAP_RESULT_PATHS = (
     R("convergence.samples[]", "-", "", "The prefixes N/8, N/4, N/2, N of the samples."),
     R("convergence.reached_volume[]", "length^3", "$V$", "Reached volume (area) at each "
       "prefix."),
-    R("convergence.mean_reachability_index[]", "-", r"$\bar{r}$", "Mean reachability index "
+    R("convergence.mean_reachability_index[]", "-", r"$r$", "Mean reachability index "
       "at each prefix."),
     R("convergence.relative_change_volume[]", "-", "", "|V_k - V_{k-1}| / V_k over each "
       "doubling."),
