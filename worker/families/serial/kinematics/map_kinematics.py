@@ -97,7 +97,8 @@ def map_poses(arm: ZAxisArm, q: FloatArray) -> MapPoses:
             )
             rotation[:, 0], rotation[:, 1] = col0, col1
         fixed = arm.fixed[i + 1]
-        position = position + np.tensordot(fixed[:3, 3], rotation, axes=([0], [1]))
+        t = fixed[:3, 3]
+        position = position + rotation[:, 0] * t[0] + rotation[:, 1] * t[1] + rotation[:, 2] * t[2]
         rotation = np.matmul(fixed[:3, :3].T, rotation)
     jac = np.empty((6, n, b))
     for i in range(n):
@@ -110,15 +111,20 @@ def map_poses(arm: ZAxisArm, q: FloatArray) -> MapPoses:
 
 
 def _gram(jac: FloatArray) -> FloatArray:
-    """The smaller Gram matrix of (B, m, n): J Jᵀ (m x m) if n >= m, else Jᵀ J."""
+    """The smaller Gram matrix of (B, m, n): J Jᵀ (m x m) if n >= m, else Jᵀ J; entry by
+    entry over (B,) vectors (contiguous when ``jac`` is :func:`map_poses`' view)."""
     m, n = jac.shape[-2:]
-    vectors = jac if n >= m else jac.swapaxes(-1, -2)  # columns j_k: vectors[:, :, k]
-    size = vectors.shape[1]
-    gram = np.zeros((jac.shape[0], size, size))
-    for k in range(vectors.shape[2]):
-        column = vectors[:, :, k]
-        gram += column[:, :, None] * column[:, None, :]
-    return gram
+    size, inner = min(m, n), max(m, n)
+    vectors = [[jac[:, a, k] if n >= m else jac[:, k, a] for k in range(inner)]
+               for a in range(size)]  # fmt: skip
+    gram = np.empty((size, size, jac.shape[0]))
+    for a in range(size):
+        for b in range(a + 1):
+            entry = vectors[a][0] * vectors[b][0]
+            for k in range(1, inner):
+                entry += vectors[a][k] * vectors[b][k]
+            gram[a, b] = gram[b, a] = entry
+    return np.moveaxis(gram, -1, 0)
 
 
 def gram_indices(
