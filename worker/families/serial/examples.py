@@ -146,4 +146,21 @@ SERIAL_WORKSPACE_MAP_EXAMPLES = (
             "length_unit": "units",
         },
     ),
+    _example(
+        "Example 1 arm with joint limits of ±120°: a quick pixel map",
+        "40,000 samples on 2-unit pixels with 36 phi bins (cheap enough to answer "
+        "synchronously): limits shrink the reached area and the tool angles per pixel.",
+        {
+            "robot": {
+                **EXAMPLE_1_PLANAR,
+                "dh": [{**row, "limits": [-120, 120]} for row in EXAMPLE_1_PLANAR["dh"]],
+            },
+            "samples": 40_000,
+            "sampler": "sobol",
+            "seed": 0,
+            "voxel_size": 2.0,
+            "orientation_bins": 36,
+            "length_unit": "units",
+        },
+    ),
 )
