@@ -61,6 +61,13 @@ SMALL: dict[str, dict[str, Any] | None] = {
     "fourbar-grashof": None,
     "serial-indices": None,
     "serial-reach": None,
+    "serial-workspace-map": {
+        "robot": {"dh": [{"a": 15.0}, {"a": 14.0}, {"a": 8.0}]},
+        "samples": 2000,
+        "voxel_size": 2.0,
+        "orientation_bins": 12,
+        "length_unit": "units",
+    },
     "spm-conditioning-map": {
         "alpha1_deg": 60.0,
         "alpha2_deg": 90.0,

@@ -2,6 +2,7 @@
 
 ``serial-indices``: pose, Jacobian and dexterity indices of given joint configurations.
 ``serial-reach``: which target poses the arm reaches within its limits (inverse kinematics).
+``serial-workspace-map``: reachable workspace and dexterity on a voxel grid, with convergence.
 
 Importing this package builds the process definitions and nothing else: the job modules
 (matplotlib figures) and the URDF parser are imported when needed.
@@ -13,22 +14,31 @@ from worker.contract import JobContext, JobOutcome
 from worker.families.serial.costs import (
     INDICES_COST_LIMIT,
     INDICES_SYNC_COST_LIMIT,
+    MAP_COST_LIMIT,
+    MAP_SYNC_COST_LIMIT,
     REACH_COST_LIMIT,
     REACH_SYNC_COST_LIMIT,
     TIME_LIMIT_S,
     indices_cost,
+    map_cost,
     reach_cost,
 )
-from worker.families.serial.examples import SERIAL_INDICES_EXAMPLES, SERIAL_REACH_EXAMPLES
+from worker.families.serial.examples import (
+    SERIAL_INDICES_EXAMPLES,
+    SERIAL_REACH_EXAMPLES,
+    SERIAL_WORKSPACE_MAP_EXAMPLES,
+)
 from worker.families.serial.reach_spec import MAX_TARGETS, SerialReachSpec
 from worker.families.serial.result_paths import (
     SERIAL_INDICES_RESULT_PATHS,
     SERIAL_REACH_RESULT_PATHS,
+    SERIAL_WORKSPACE_MAP_RESULT_PATHS,
 )
 from worker.families.serial.specs import MAX_CONFIGURATIONS, SerialIndicesSpec
-from worker.processes import FamilyInfo, ProcessDefinition, figure_files
+from worker.families.serial.workspace_spec import MAX_SAMPLES, SerialWorkspaceMapSpec
+from worker.processes import FamilyInfo, ProcessDefinition, data_files, figure_files
 
-__all__ = ["FAMILY", "PROCESSES", "SERIAL_INDICES", "SERIAL_REACH"]
+__all__ = ["FAMILY", "PROCESSES", "SERIAL_INDICES", "SERIAL_REACH", "SERIAL_WORKSPACE_MAP"]
 
 
 def _run_serial_indices(spec: SerialIndicesSpec, ctx: JobContext) -> JobOutcome:
@@ -133,6 +143,68 @@ SERIAL_REACH = ProcessDefinition(
     time_limit_s=TIME_LIMIT_S,
 )
 
+
+def _run_serial_workspace_map(spec: SerialWorkspaceMapSpec, ctx: JobContext) -> JobOutcome:
+    # lazy: the job module (matplotlib) loads when a job runs, not with the registry
+    from worker.families.serial.jobs.workspace_map import run_serial_workspace_map
+
+    return run_serial_workspace_map(spec, ctx)
+
+
+SERIAL_WORKSPACE_MAP = ProcessDefinition(
+    id="serial-workspace-map",
+    title="Serial arm (DH or URDF): reachable workspace and dexterity map",
+    method_doc="serial",
+    result_paths=SERIAL_WORKSPACE_MAP_RESULT_PATHS,
+    files=(
+        *data_files("workspace_map", "Workspace map: reached voxels and their indices"),
+        *figure_files("workspace_slices", "Reachability index: slices through the grid"),
+        *figure_files("workspace_3d", "Reached voxels in 3-D"),
+        *figure_files("workspace_histograms", "Histograms of the indices over the reached voxels"),
+    ),
+    description=(
+        "Your own serial arm (a DH table or a URDF chain, docs/methods/serial.md): joint "
+        "samples within its limits ('sobol', 'uniform' or a 'grid', seeded) through "
+        "vectorised forward kinematics give, on a node-centred voxel grid ('voxel_size'; "
+        "pixels for a planar arm; 'bounds' or the arm's reach), which voxels the tool "
+        "point reaches, the reachability index (the fraction of 'orientation_bins' "
+        "reached: equal-area tool-axis cells on the sphere, or tool-angle bins for a "
+        "planar arm) and per-voxel min/mean/max of the manipulability and the inverse "
+        "condition number; a convergence report (reached volume and mean index at N/8, "
+        "N/4, N/2 and N samples against 'convergence_tolerance'); the grid as NPZ, the "
+        "reached voxels as CSV, slices, a 3-D view and histograms. Cost: samples x "
+        f"joints, at most {MAP_COST_LIMIT:,} ({MAX_SAMPLES:,} samples); up to "
+        f"{MAP_SYNC_COST_LIMIT:,} answered synchronously with 'Prefer: wait=N'."
+    ),
+    inputs_model=SerialWorkspaceMapSpec,
+    run=_run_serial_workspace_map,
+    examples=SERIAL_WORKSPACE_MAP_EXAMPLES,
+    outputs={
+        "arm": "The arm: source (dh or urdf), convention, joints, joint_names, joint_types, "
+        "planar, task_space.",
+        "length_unit": "The length unit.",
+        "characteristic_length": "The length dividing the linear rows (null: unscaled).",
+        "sampler": "The joint sampler.",
+        "seed": "Seed of the sampler.",
+        "voxel_size": "Voxel (pixel) edge.",
+        "orientation_bins": "count, of (tool angle or tool axis), bands, cells_per_band.",
+        "grid": "axes, shape, first and last node per axis, cell (pixel or voxel).",
+        "summary": "samples, samples_in_grid, voxels, reached_voxels, reached_volume (area "
+        "for a planar arm), mean_reachability_index, full_orientation_voxels, "
+        "manipulability_min/max, inverse_condition_mean/max.",
+        "convergence": "samples (N/8, N/4, N/2, N), reached_volume, "
+        "mean_reachability_index, relative_change_volume, relative_change_index, "
+        "tolerance, met.",
+    },
+    cost=map_cost,
+    cost_limit=MAP_COST_LIMIT,
+    cost_unit="samples x joints",
+    sync_cost_limit=MAP_SYNC_COST_LIMIT,
+    seconds_per_cost=8e-7,
+    seconds_per_run=0.5,
+    time_limit_s=TIME_LIMIT_S,
+)
+
 #: Who this family is: the tag its operations are listed under, and its sources.
 FAMILY = FamilyInfo(
     name="serial",
@@ -145,4 +217,4 @@ FAMILY = FamilyInfo(
 )
 
 #: This family's processes, in the order GET /v1/processes lists them.
-PROCESSES = (SERIAL_INDICES, SERIAL_REACH)
+PROCESSES = (SERIAL_INDICES, SERIAL_REACH, SERIAL_WORKSPACE_MAP)

@@ -3,20 +3,25 @@
 ``serial-indices`` costs configurations x joints (a forward pass, a Jacobian and an SVD
 each, about a microsecond a joint).  ``serial-reach`` costs targets x seeds x
 max_iterations x joints: the damped least-squares work if no seed converged early.
+``serial-workspace-map`` costs samples x joints (about a microsecond per sample-joint).
 """
 
 from __future__ import annotations
 
 from worker.families.serial.reach_spec import SerialReachSpec
 from worker.families.serial.specs import MAX_CONFIGURATIONS, SerialIndicesSpec
+from worker.families.serial.workspace_spec import SerialWorkspaceMapSpec
 
 __all__ = [
     "INDICES_COST_LIMIT",
     "INDICES_SYNC_COST_LIMIT",
+    "MAP_COST_LIMIT",
+    "MAP_SYNC_COST_LIMIT",
     "REACH_COST_LIMIT",
     "REACH_SYNC_COST_LIMIT",
     "TIME_LIMIT_S",
     "indices_cost",
+    "map_cost",
     "reach_cost",
 ]
 
@@ -40,3 +45,14 @@ REACH_SYNC_COST_LIMIT = 200_000
 def reach_cost(spec: SerialReachSpec) -> int:
     """Targets x seeds x max_iterations x joints."""
     return len(spec.targets) * spec.seeds * spec.max_iterations * spec.arm().joints
+
+
+#: serial-workspace-map: 10^7 samples of a 12-joint arm.
+MAP_COST_LIMIT = 120_000_000
+#: Up to this (e.g. 20,000 samples of a six-axis arm) answered synchronously.
+MAP_SYNC_COST_LIMIT = 120_000
+
+
+def map_cost(spec: SerialWorkspaceMapSpec) -> int:
+    """Joint samples x joints (forward kinematics, Jacobian and indices per sample)."""
+    return spec.samples * spec.arm().joints

@@ -9,7 +9,11 @@ from typing import Any
 from worker.families.serial.arms import EXAMPLE_1_PLANAR, PANDA, PUMA_560, UR5, UR5_URDF
 from worker.processes import ProcessExample
 
-__all__ = ["SERIAL_INDICES_EXAMPLES", "SERIAL_REACH_EXAMPLES"]
+__all__ = [
+    "SERIAL_INDICES_EXAMPLES",
+    "SERIAL_REACH_EXAMPLES",
+    "SERIAL_WORKSPACE_MAP_EXAMPLES",
+]
 
 _UR5_POSES = [[0, -90, 90, -90, -90, 0], [30, -60, 45, -75, -90, 15], [0, 0, 0, 0, 0, 0]]
 
@@ -108,6 +112,54 @@ SERIAL_REACH_EXAMPLES = (
                 "dh": [{**row, "limits": [-120, 120]} for row in EXAMPLE_1_PLANAR["dh"]],
             },
             "targets": [{**t, "rpy_deg": [0, 0, 120]} for t in _EXAMPLE_1_TARGETS[:5]],
+            "length_unit": "units",
+        },
+    ),
+)
+
+SERIAL_WORKSPACE_MAP_EXAMPLES = (
+    _example(
+        "UR5 (standard DH): workspace map from 200,000 Sobol' samples",
+        "10 cm voxels and 36 equal-area tool-axis cells: the reached volume, the fraction "
+        "of tool directions per voxel and the indices, with the convergence report.",
+        {
+            "robot": UR5,
+            "samples": 200_000,
+            "sampler": "sobol",
+            "seed": 0,
+            "voxel_size": 0.1,
+            "orientation_bins": 36,
+            "length_unit": "m",
+        },
+    ),
+    _example(
+        "Patel & Sobh's Example 1 arm: pixel map of the tool-angle reach",
+        "The planar 3R arm (15, 14, 8) on 1-unit pixels with 36 phi bins: the sampled "
+        "counterpart of planar3r-dexterity-map's exact d_z (docs/methods/serial.md).",
+        {
+            "robot": EXAMPLE_1_PLANAR,
+            "samples": 400_000,
+            "sampler": "sobol",
+            "seed": 0,
+            "voxel_size": 1.0,
+            "orientation_bins": 36,
+            "length_unit": "units",
+        },
+    ),
+    _example(
+        "Example 1 arm with joint limits of ±120°: a quick pixel map",
+        "40,000 samples on 2-unit pixels with 36 phi bins (cheap enough to answer "
+        "synchronously): limits shrink the reached area and the tool angles per pixel.",
+        {
+            "robot": {
+                **EXAMPLE_1_PLANAR,
+                "dh": [{**row, "limits": [-120, 120]} for row in EXAMPLE_1_PLANAR["dh"]],
+            },
+            "samples": 40_000,
+            "sampler": "sobol",
+            "seed": 0,
+            "voxel_size": 2.0,
+            "orientation_bins": 36,
             "length_unit": "units",
         },
     ),

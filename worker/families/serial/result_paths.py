@@ -5,7 +5,11 @@ from __future__ import annotations
 
 from worker.result_paths import ResultPathInfo as R
 
-__all__ = ["SERIAL_INDICES_RESULT_PATHS", "SERIAL_REACH_RESULT_PATHS"]
+__all__ = [
+    "SERIAL_INDICES_RESULT_PATHS",
+    "SERIAL_REACH_RESULT_PATHS",
+    "SERIAL_WORKSPACE_MAP_RESULT_PATHS",
+]
 
 SERIAL_INDICES_RESULT_PATHS = (
     R("arm.joints", "-", "$n$", "Movable joints."),
@@ -72,4 +76,44 @@ SERIAL_REACH_RESULT_PATHS = (
       "condition number of the reached targets' solutions."),
     R("summary.inverse_condition_mean", "-", r"$1/\kappa$", "The mean inverse condition "
       "number of the reached targets' solutions."),
+)  # fmt: skip
+
+SERIAL_WORKSPACE_MAP_RESULT_PATHS = (
+    R("arm.joints", "-", "$n$", "Movable joints."),
+    R("characteristic_length", "length", "$L$", "The length dividing the linear rows for "
+      "the inverse condition number (null: unscaled)."),
+    R("seed", "-", "", "Seed of the joint sampler."),
+    R("voxel_size", "length", "$h$", "Edge of a voxel (pixel for a planar arm)."),
+    R("orientation_bins.count", "-", "$K$", "Orientation bins."),
+    R("orientation_bins.bands", "-", "", "Latitude bands of the sphere bins (1: phi bins)."),
+    R("orientation_bins.cells_per_band", "-", "", "Longitude cells per band (phi bins)."),
+    R("grid.shape[]", "-", "", "Nodes per axis."),
+    R("grid.first[]", "length", "", "The first node per axis."),
+    R("grid.last[]", "length", "", "The last node per axis."),
+    R("summary.samples", "-", "$N$", "Joint samples drawn."),
+    R("summary.samples_in_grid", "-", "", "Samples whose tool point fell in the grid."),
+    R("summary.voxels", "-", "", "Voxels (pixels) of the grid."),
+    R("summary.reached_voxels", "-", "", "Voxels with at least one sample."),
+    R("summary.reached_volume", "length^3", "$V$", "Reached voxels x voxel volume (a "
+      "planar arm: reached pixels x pixel area, length^2)."),
+    R("summary.mean_reachability_index", "-", r"$r$", "Mean over the reached voxels "
+      "of the fraction of orientation bins reached."),
+    R("summary.full_orientation_voxels", "-", "", "Voxels reaching every orientation bin."),
+    R("summary.manipulability_min", "mixed", r"$w_{\min}$", "The least manipulability "
+      "sampled in the grid."),
+    R("summary.manipulability_max", "mixed", r"$w_{\max}$", "The largest manipulability "
+      "sampled in the grid."),
+    R("summary.inverse_condition_mean", "-", r"$1/\kappa$", "Mean over the reached voxels "
+      "of the per-voxel mean inverse condition number."),
+    R("summary.inverse_condition_max", "-", r"$1/\kappa_{\max}$", "The largest inverse "
+      "condition number sampled in the grid."),
+    R("convergence.samples[]", "-", "", "The prefixes N/8, N/4, N/2, N of the samples."),
+    R("convergence.reached_volume[]", "length^3", "$V$", "Reached volume (area) at each "
+      "prefix."),
+    R("convergence.mean_reachability_index[]", "-", r"$r$", "Mean reachability index "
+      "at each prefix."),
+    R("convergence.relative_change_volume[]", "-", "", "|V_k - V_{k-1}| / V_k over each "
+      "doubling."),
+    R("convergence.relative_change_index[]", "-", "", "The same for the mean index."),
+    R("convergence.tolerance", "-", "", "The largest relative change for convergence."),
 )  # fmt: skip
