@@ -28,16 +28,18 @@ from service.pages import (
     STATIC_PREFIX,
     Pages,
     actions,
+    explorer,
     login,
     methods,
     queue_page,
     workflow,
 )
 from service.pages import routes as v1_pages
+from service.preview_rate import PreviewRate
 from service.problems import PROBLEM_TYPES, problem_response
 from service.request_guard import RequestGuard
 from service.request_id import RequestId
-from service.routes import health, job_events, jobs, landing, processes, reuse
+from service.routes import health, job_events, jobs, landing, previews, processes, reuse
 from service.routes.process_operations import (
     execution_router,
     family_of,
@@ -191,6 +193,7 @@ def create_app(settings: Settings, *, registry: ProcessRegistry | None = None) -
     app.include_router(v1_pages.router)
     app.include_router(execution_router(registry))
     app.include_router(processes.router)
+    app.include_router(previews.router)  # the live explorer's, nothing stored
     app.include_router(jobs.router)
     app.include_router(reuse.router)
     app.include_router(health.router)
@@ -206,6 +209,9 @@ def create_app(settings: Settings, *, registry: ProcessRegistry | None = None) -
     app.include_router(workflow.router)
     app.include_router(queue_page.router)
     app.include_router(login.router)
+    app.include_router(previews.page_router)
+    app.include_router(explorer.router)
+    app.state.preview_rate = PreviewRate(settings.submit_rate_per_min)
     app.mount(STATIC_PREFIX, StaticFiles(directory=STATIC_DIR), name="pages-static")
 
     @app.get(
