@@ -52,24 +52,57 @@
     return div;
   }
 
-  function drawMap(map, index) {
-    var square = map.x_unit === map.y_unit && map.x_unit !== "deg";
-    var trace = {
-      type: "heatmap", x: map.x, y: map.y, z: map.z, colorscale: "Viridis",
-      hoverongaps: false, hovertemplate: hoverText(map),
-      colorbar: {title: {text: withUnit(map.z_label, map.z_unit)}}
-    };
+  // Maps of one quantity over the same axes (the SPM's panels at several torsions) are
+  // drawn as one figure of stacked panels sharing a colour bar: one layout and one
+  // redraw instead of one per panel.
+  function groups(maps) {
+    var byKey = {};
+    var list = [];
+    maps.forEach(function (map) {
+      var key = [map.x_label, map.x_unit, map.y_label, map.y_unit, map.z_label, map.z_unit]
+        .join("|");
+      if (!byKey[key]) {
+        byKey[key] = [];
+        list.push(byKey[key]);
+      }
+      byKey[key].push(map);
+    });
+    return list;
+  }
+
+  function drawGroup(maps, index) {
+    var first = maps[0];
+    var square = first.x_unit === first.y_unit && first.x_unit !== "deg";
     var layout = {
-      title: {text: map.title, font: {size: 14}},
-      margin: {l: 60, r: 20, t: 40, b: 50},
-      xaxis: {title: {text: withUnit(map.x_label, map.x_unit)}},
-      yaxis: {title: {text: withUnit(map.y_label, map.y_unit)}},
+      margin: {l: 60, r: 20, t: 30, b: 50},
+      coloraxis: {colorscale: "Viridis",
+                  colorbar: {title: {text: withUnit(first.z_label, first.z_unit)}}},
+      annotations: [],
       uirevision: config.process_id
     };
-    if (square) {
-      layout.yaxis.scaleanchor = "x";
-    }
-    return window.Plotly.react(chartDiv(index), [trace], layout, {
+    var traces = maps.map(function (map, k) {
+      var suffix = k === 0 ? "" : String(k + 1);
+      var domain = [1 - (k + 1) / maps.length + 0.06, 1 - k / maps.length - 0.04];
+      if (maps.length === 1) {
+        domain = [0, 1];
+      }
+      layout["xaxis" + suffix] = {anchor: "y" + suffix, title: {text: k === maps.length - 1 ?
+        withUnit(map.x_label, map.x_unit) : ""}};
+      layout["yaxis" + suffix] = {anchor: "x" + suffix, domain: domain,
+                                  title: {text: withUnit(map.y_label, map.y_unit)}};
+      if (square) {
+        layout["yaxis" + suffix].scaleanchor = "x" + suffix;
+      }
+      layout.annotations.push({text: map.title, showarrow: false, xref: "paper",
+                               yref: "paper", x: 0, xanchor: "left", y: domain[1],
+                               yanchor: "bottom", font: {size: 13}});
+      return {type: "heatmap", x: map.x, y: map.y, z: map.z, coloraxis: "coloraxis",
+              xaxis: "x" + suffix, yaxis: "y" + suffix, hoverongaps: false,
+              hovertemplate: hoverText(map)};
+    });
+    var div = chartDiv(index);
+    div.classList.toggle("explorer-chart-tall", maps.length > 1);
+    return window.Plotly.react(div, traces, layout, {
       responsive: true, displaylogo: false,
       toImageButtonOptions: {format: "png", filename: config.process_id}
     });
@@ -105,12 +138,13 @@
   }
 
   function draw(doc, change) {
-    while (charts.children.length > doc.maps.length) {
+    var figures = groups(doc.maps);
+    while (charts.children.length > figures.length) {
       window.Plotly.purge(charts.lastChild);
       charts.removeChild(charts.lastChild);
     }
     drawIndices(doc.indices, doc.notes || []);
-    return Promise.all(doc.maps.map(drawMap)).then(function () {
+    return Promise.all(figures.map(drawGroup)).then(function () {
       root.dataset.state = "drawn";
       root.dataset.drawn = String(change);
       status.textContent = "Cost " + doc.cost.toLocaleString() + " " + doc.cost_unit + ".";
