@@ -99,8 +99,9 @@ def main() -> None:
     ):
         for process_id, (path, _, start) in SWEEPS.items():
             ms = measure(offline.page, server.base_url, process_id, args.changes, args.warmup)
+            p50, p95 = percentile(ms, 0.5), percentile(ms, 0.95)
             print(f"{process_id} ({start}; {len(ms)} changes of {path}): "
-                  f"p50 {percentile(ms, 0.5):.1f} ms p95 {percentile(ms, 0.95):.1f} ms", flush=True)  # fmt: skip
+                  f"p50 {p50:.1f} ms p95 {p95:.1f} ms", flush=True)  # fmt: skip
         if offline.external:
             raise SystemExit(f"the explorers loaded from outside: {offline.external}")
 
