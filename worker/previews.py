@@ -23,7 +23,7 @@ from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
 from typing import Any
 
-__all__ = ["PreviewField", "ProcessPreview"]
+__all__ = ["DataChart", "PreviewField", "ProcessPreview"]
 
 
 @dataclass(frozen=True)
@@ -58,3 +58,23 @@ class ProcessPreview:
     def start_inputs(self, example_inputs: Mapping[str, Any]) -> dict[str, Any]:
         """The explorer's first inputs: the worked example's, overridden (top level)."""
         return {**example_inputs, **self.start_overrides}
+
+
+@dataclass(frozen=True)
+class DataChart:
+    """A heat map a finished job's page draws in the browser from the job's own CSV
+    file (one row per grid node; columns named ``"quantity [unit]"``), beside its PNG
+    plots (which stay, and are all a page without JavaScript shows): ``z`` over ``x``
+    and ``y``; values at or below ``blank_at_or_below`` are drawn as no value (a
+    dexterity of 0: unreachable)."""
+
+    file: str
+    x: str
+    y: str
+    z: str
+    title: str
+    blank_at_or_below: float | None = None
+
+    def describe(self) -> dict[str, Any]:
+        return {"file": self.file, "x": self.x, "y": self.y, "z": self.z, "title": self.title,
+                "blank_at_or_below": self.blank_at_or_below}  # fmt: skip

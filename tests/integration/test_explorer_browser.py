@@ -150,3 +150,32 @@ def test_without_javascript_the_page_says_the_explorer_needs_it(
         assert "needs JavaScript" in note.inner_text()
         note.get_by_role("link").click()
         page.wait_for_url("**/v1/processes/spm-conditioning-map#examples")
+
+
+@pytest.mark.parametrize("javascript", [True, False], ids=["js", "no-js"])
+def test_a_map_job_page_draws_its_own_data_as_a_heat_map(
+    server: Deployment, browser: Any, javascript: bool
+) -> None:
+    inputs = {"links": [15, 14, 8], "grid": {"points_per_axis": 41}}
+    r = server.client.post("/v1/processes/planar3r-dexterity-map/execution",
+                           json={"inputs": inputs})  # fmt: skip
+    assert r.status_code == 201, r.text
+    job_id = r.json()["jobID"]
+    finished_result(server, job_id)
+    with open_page(browser, javascript=javascript) as offline:
+        page = offline.page
+        page.add_init_script(WATCH_CSP)
+        page.goto(f"{server.base_url}/v1/jobs/{job_id}")
+        assert page.locator("figure.plot img").count() >= 1  # the PNGs stay
+        if not javascript:
+            assert not page.locator("#job-chart").is_visible()
+            return
+        page.wait_for_selector("#job-chart[data-drawn='1']", state="attached",
+                               timeout=TIMEOUT_MS)  # fmt: skip
+        assert page.locator("#job-chart .main-svg").count() >= 1
+        page.locator("#job-chart .nsewdrag").first.hover()
+        hover = page.locator("#job-chart .hovertext")
+        hover.first.wait_for(timeout=TIMEOUT_MS)
+        assert "units" in (hover.first.text_content() or "")  # x and y with their unit
+        assert page.evaluate("window.cspViolations") == []
+        assert offline.external == []

@@ -9,9 +9,9 @@ from __future__ import annotations
 from typing import Any
 
 from worker.families.planar_parallel.specs import ConditioningMapSpec
-from worker.previews import PreviewField, ProcessPreview
+from worker.previews import DataChart, PreviewField, ProcessPreview
 
-__all__ = ["CONDITIONING_MAP_PREVIEW", "PREVIEW_COST_LIMIT"]
+__all__ = ["CONDITIONING_MAP_CHART", "CONDITIONING_MAP_PREVIEW", "PREVIEW_COST_LIMIT"]
 
 #: The process prices the exact W_kappa0 boundary (801 x 321) a preview does not
 #: compute: a 201 x 201 grid with a limit and a few given points fits (~70 ms).
@@ -35,4 +35,9 @@ CONDITIONING_MAP_PREVIEW = ProcessPreview(
         PreviewField("inverse_condition_limit", "1/κ0 (limit of W_κ0)", "", 0.05, 0.95, 0.01),
     ),
     start_overrides={"grid": {"points_per_axis": 101}, "plots": False},
+)
+
+#: A job's interactive heat map, from its conditioning_map.csv (NaN: unreachable).
+CONDITIONING_MAP_CHART = DataChart(
+    "conditioning_map.csv", "x", "y", "inverse_condition", "1/κ over the workspace"
 )

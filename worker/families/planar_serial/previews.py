@@ -8,9 +8,9 @@ from __future__ import annotations
 from typing import Any
 
 from worker.families.planar_serial.specs import DexterityMapSpec
-from worker.previews import PreviewField, ProcessPreview
+from worker.previews import DataChart, PreviewField, ProcessPreview
 
-__all__ = ["DEXTERITY_MAP_PREVIEW", "PREVIEW_COST_LIMIT"]
+__all__ = ["DEXTERITY_MAP_CHART", "DEXTERITY_MAP_PREVIEW", "PREVIEW_COST_LIMIT"]
 
 #: A 101 x 101 map under joint limits with exact events (at most 21 sub-arcs a node):
 #: above the synchronous limit (101 x 101, one orientation), but ~10 ms of work.
@@ -34,4 +34,9 @@ DEXTERITY_MAP_PREVIEW = ProcessPreview(
     ),
     start_example=1,
     start_overrides={"grid": {"points_per_axis": 101}, "plots": False},
+)
+
+#: A job's interactive heat map, from its dexterity_map.csv (d_z = 0: unreachable).
+DEXTERITY_MAP_CHART = DataChart(
+    "dexterity_map.csv", "x", "y", "d_z", "Dexterity d_z over the workspace", 0.0
 )
