@@ -28,7 +28,7 @@ def grid_values(values: ArrayLike) -> list[list[float | None]]:
         raise ValueError(f"a map is (ny, nx); got shape {array.shape}")
     finite = np.isfinite(array)
     scale = np.where(finite & (array != 0.0), np.abs(array), 1.0)
-    decimals = DIGITS - 1 - np.floor(np.log10(scale))
+    decimals = np.minimum(DIGITS - 1 - np.floor(np.log10(scale)), 300.0)  # 10**300 is finite
     factor = 10.0**decimals
     rounded = np.where(finite, np.round(array * factor) / factor, np.nan)
     return [[None if v != v else v for v in row] for row in rounded.tolist()]
