@@ -12,7 +12,6 @@ from hypothesis.extra.numpy import arrays
 
 from worker.common.preview_arrays import axis_values, grid_values, map_entry
 
-
 VALUES = st.one_of(st.floats(-1e12, 1e12), st.sampled_from([math.nan, math.inf]))
 
 
