@@ -179,3 +179,14 @@ def test_a_map_job_page_draws_its_own_data_as_a_heat_map(
         assert "units" in (hover.first.text_content() or "")  # x and y with their unit
         assert page.evaluate("window.cspViolations") == []
         assert offline.external == []
+
+
+def test_at_a_phone_width_the_explorer_does_not_scroll_sideways(
+    server: Deployment, browser: Any
+) -> None:
+    with open_page(browser, width=390, height=800) as offline:
+        page = offline.page
+        page.goto(f"{server.base_url}/pages/processes/spm-conditioning-map/explore")
+        drawn(page, 1)
+        width, viewport = page.evaluate("[document.documentElement.scrollWidth, innerWidth]")
+        assert width <= viewport
