@@ -32,6 +32,7 @@ from service.pages import (
     login,
     methods,
     queue_page,
+    study_actions,
     workflow,
 )
 from service.pages import routes as v1_pages
@@ -39,7 +40,16 @@ from service.preview_rate import PreviewRate
 from service.problems import PROBLEM_TYPES, problem_response
 from service.request_guard import RequestGuard
 from service.request_id import RequestId
-from service.routes import health, job_events, jobs, landing, previews, processes, reuse
+from service.routes import (
+    designs,
+    health,
+    job_events,
+    jobs,
+    landing,
+    previews,
+    processes,
+    reuse,
+)
 from service.routes.process_operations import (
     execution_router,
     family_of,
@@ -54,6 +64,7 @@ from worker.registry import default_registry
 from worker.retention import RetentionSweeper
 from worker.store import open_store
 from worker.store.base import JobStore
+from worker.studies.design_table import DesignTables
 
 if TYPE_CHECKING:
     from worker.dispatch.celery.dispatch import Sweeper
@@ -115,6 +126,7 @@ def create_app(settings: Settings, *, registry: ProcessRegistry | None = None) -
         app.state.pool = pool
         app.state.dispatcher = dispatcher
         app.state.watcher = JobWatcher(store)
+        app.state.design_tables = DesignTables()  # studies' designs, read once per file
         app.state.watcher.start()
         if metrics is not None:  # job figures from the store, whoever runs the jobs
             metrics.watch_store(store, [d.id for d in registry],
@@ -195,6 +207,7 @@ def create_app(settings: Settings, *, registry: ProcessRegistry | None = None) -
     app.include_router(processes.router)
     app.include_router(previews.router)  # the live explorer's, nothing stored
     app.include_router(jobs.router)
+    app.include_router(designs.router)
     app.include_router(reuse.router)
     app.include_router(health.router)
     app.include_router(landing.router)
@@ -207,6 +220,7 @@ def create_app(settings: Settings, *, registry: ProcessRegistry | None = None) -
     app.include_router(methods.router)
     app.include_router(actions.router)
     app.include_router(workflow.router)
+    app.include_router(study_actions.router)
     app.include_router(queue_page.router)
     app.include_router(login.router)
     app.include_router(previews.page_router)

@@ -15,6 +15,7 @@ from service.deps import Api, ApiDep
 from service.job_lookup import find_job, list_jobs
 from service.pages import views
 from service.pages.html_route import page_router
+from service.pages.study_page import study_context
 from service.parameters import JobListQueryDep
 from worker.contract import JobStatus
 
@@ -55,7 +56,8 @@ def job_list(request: Request, api: ApiDep, query: JobListQueryDep) -> HTMLRespo
 def _job_page(request: Request, api: Api, job_id: str) -> HTMLResponse:
     job = find_job(api.store, job_id, api.identity.owner_scope)
     result = api.store.get_result(job.job_id) if job.status is JobStatus.SUCCESSFUL else None
-    return views.job_page(request, api.pages, api.registry, job, result)
+    extra = study_context(request, api, job, result)  # a design study's explorer
+    return views.job_page(request, api.pages, api.registry, job, result, extra=extra)
 
 
 @router.get("/v1/jobs/{job_id}")

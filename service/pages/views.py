@@ -240,6 +240,12 @@ def job_page(
         "job": document,
         "job_inputs": dict(job.inputs),
         "process_title": definition.title if definition is not None else job.process_id,
+        # a study's chunk has no process page of its own: its title leads to the study
+        "process_href": f"/v1/processes/{job.process_id}"
+        if definition is not None
+        else job_href(job.parent_id)
+        if job.parent_id
+        else "",
         "live": live,
         "finished": finished,
         "dismiss_label": ("Cancel this job" if live else "Delete the results" if finished else ""),

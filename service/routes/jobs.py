@@ -31,7 +31,7 @@ from worker.errors import (
 )
 from worker.store.base import JobStore, StoredArtifact
 
-__all__ = ["finished_document", "router"]
+__all__ = ["finished_document", "finished_job", "router"]
 
 router = APIRouter(prefix="/v1/jobs", tags=["jobs"])
 
@@ -100,7 +100,7 @@ def dismiss_job(job_id: str, api: ApiDep) -> StatusDocument:
     return _status(job, api.identity)
 
 
-def _finished(store: JobStore, job_id: str, owner: str | None = None) -> JobRecord:
+def finished_job(store: JobStore, job_id: str, owner: str | None = None) -> JobRecord:
     """The job if it succeeded; otherwise the problem that says why it has no results."""
     job = _job(store, job_id, owner)
     if job.status is JobStatus.FAILED:
@@ -116,7 +116,7 @@ def _finished(store: JobStore, job_id: str, owner: str | None = None) -> JobReco
 
 def finished_document(store: JobStore, job: JobRecord, admin: bool = False) -> ResultsDocument:
     """The result document of a finished job, or the problem that says why there is none."""
-    job = _finished(store, job.job_id)
+    job = finished_job(store, job.job_id)
     result = store.get_result(job.job_id)
     if result is None:  # dismissed between the two reads
         raise JobDismissed(f"Job {job.job_id} was dismissed; it has no results.")
@@ -145,7 +145,7 @@ def _artifact(
     store: JobStore, job_id: str, name: str, owner: str | None
 ) -> tuple[StoredArtifact, dict[str, str]]:
     """The artifact of a successful job, and the headers of its download."""
-    job = _finished(store, job_id, owner)
+    job = finished_job(store, job_id, owner)
     stored = store.artifact(job_id, name)
     if stored is None:
         names = ", ".join(a.name for a in job.artifacts)

@@ -36,6 +36,7 @@ from service.ogc.schemas import (
 )
 from service.ogc.vocabulary import REL_CONFORMANCE, REL_JOB_LIST, REL_PROCESSES, REL_RESULTS
 from worker.contract import Artifact
+from worker.registry import default_registry
 
 pytestmark = [pytest.mark.integration, pytest.mark.anyio]
 
@@ -178,7 +179,8 @@ async def test_landing_conformance_and_processes(pool: httpx.AsyncClient) -> Non
     listing = (await pool.get("/ogc/processes", params={"limit": 100})).json()
     OgcProcessList.model_validate(listing)
     rels_of_list = [link["rel"] for link in listing["links"]]
-    assert len(listing["processes"]) == 12 and rels_of_list == ["self", "alternate"]
+    processes = len(list(default_registry()))  # more than a page of 10
+    assert len(listing["processes"]) == processes > 10 and rels_of_list == ["self", "alternate"]
     page = (await pool.get("/ogc/processes", params={"limit": 4, "offset": 4})).json()
     assert [p["id"] for p in page["processes"]] == [p["id"] for p in listing["processes"][4:8]]
     (after,) = [link for link in page["links"] if link["rel"] == "next"]

@@ -25,7 +25,14 @@ from worker.studies.paths import parse_input_path, parse_result_path, read_resul
 from worker.studies.rows import FAILED, FEASIBLE, NO_VALUE, REFUSED, ChunkRows, ReasonTally
 from worker.studies.spec import StudySpec
 
-__all__ = ["DesignRow", "SilentContext", "chunk_rows", "design_inputs", "evaluate_block"]
+__all__ = [
+    "DesignRow",
+    "SilentContext",
+    "chunk_rows",
+    "design_inputs",
+    "evaluate_block",
+    "one_design_inputs",
+]
 
 
 @dataclass(frozen=True)
@@ -81,6 +88,20 @@ def design_inputs(spec: StudySpec, values: tuple[float, ...]) -> dict[str, Any]:
     inputs: dict[str, Any] = dict(spec.fixed)
     for name, value in zip(spec.designs.names, values, strict=True):
         inputs = with_input(inputs, parse_input_path(name), value)
+    return inputs
+
+
+def one_design_inputs(spec: StudySpec, process: ProcessDefinition, index: int) -> dict[str, Any]:
+    """The inputs of design ``index`` run alone as a job of ``process``: ``fixed`` with
+    its varied values, plots on where the process draws any (``IndexError`` past the
+    last design)."""
+    if not 0 <= index < spec.designs.count:
+        raise IndexError(f"the study has {spec.designs.count:,} designs (0 to "
+                         f"{spec.designs.count - 1:,})")  # fmt: skip
+    values = tuple(float(v) for v in spec.designs.block(index, index + 1)[0])
+    inputs = design_inputs(spec, values)
+    if "plots" in process.inputs_model.model_fields:
+        inputs["plots"] = True
     return inputs
 
 

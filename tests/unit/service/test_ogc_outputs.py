@@ -60,6 +60,7 @@ SMALL: dict[str, dict[str, Any] | None] = {
     "chain-parallelism": None,  # the first worked example
     "fourbar-grashof": None,
     "serial-indices": None,
+    "serial-reach": None,
     "spm-conditioning-map": {
         "alpha1_deg": 60.0,
         "alpha2_deg": 90.0,

@@ -1,6 +1,7 @@
 """Serial arms of the user's own (docs/methods/serial.md): DH tables or URDF chains.
 
 ``serial-indices``: pose, Jacobian and dexterity indices of given joint configurations.
+``serial-reach``: which target poses the arm reaches within its limits (inverse kinematics).
 
 Importing this package builds the process definitions and nothing else: the job modules
 (matplotlib figures) and the URDF parser are imported when needed.
@@ -12,15 +13,22 @@ from worker.contract import JobContext, JobOutcome
 from worker.families.serial.costs import (
     INDICES_COST_LIMIT,
     INDICES_SYNC_COST_LIMIT,
+    REACH_COST_LIMIT,
+    REACH_SYNC_COST_LIMIT,
     TIME_LIMIT_S,
     indices_cost,
+    reach_cost,
 )
-from worker.families.serial.examples import SERIAL_INDICES_EXAMPLES
-from worker.families.serial.result_paths import SERIAL_INDICES_RESULT_PATHS
+from worker.families.serial.examples import SERIAL_INDICES_EXAMPLES, SERIAL_REACH_EXAMPLES
+from worker.families.serial.reach_spec import MAX_TARGETS, SerialReachSpec
+from worker.families.serial.result_paths import (
+    SERIAL_INDICES_RESULT_PATHS,
+    SERIAL_REACH_RESULT_PATHS,
+)
 from worker.families.serial.specs import MAX_CONFIGURATIONS, SerialIndicesSpec
 from worker.processes import FamilyInfo, ProcessDefinition, figure_files
 
-__all__ = ["FAMILY", "PROCESSES", "SERIAL_INDICES"]
+__all__ = ["FAMILY", "PROCESSES", "SERIAL_INDICES", "SERIAL_REACH"]
 
 
 def _run_serial_indices(spec: SerialIndicesSpec, ctx: JobContext) -> JobOutcome:
@@ -72,6 +80,59 @@ SERIAL_INDICES = ProcessDefinition(
     time_limit_s=TIME_LIMIT_S,
 )
 
+
+def _run_serial_reach(spec: SerialReachSpec, ctx: JobContext) -> JobOutcome:
+    # lazy: the job module (matplotlib) loads when a job runs, not with the registry
+    from worker.families.serial.jobs.reach import run_serial_reach
+
+    return run_serial_reach(spec, ctx)
+
+
+SERIAL_REACH = ProcessDefinition(
+    id="serial-reach",
+    title="Serial arm (DH or URDF): which target poses it reaches",
+    method_doc="serial",
+    result_paths=SERIAL_REACH_RESULT_PATHS,
+    files=figure_files("reach", "Targets reached or not, and the arm at a few solutions"),
+    description=(
+        "Your own serial arm (a DH table or a URDF chain, docs/methods/serial.md) and "
+        "target poses of its tool (a position, an optional roll-pitch-yaw orientation and "
+        "tolerances each): per target whether the arm reaches it within its joint limits, "
+        "the joint solution (closed form for a planar 3R arm; otherwise damped least "
+        "squares from 'seeds' starting configurations drawn with 'seed', so the same "
+        "request gives the same answer), its residual, manipulability and inverse "
+        "condition number, and the share of targets reached; a figure of the targets and "
+        f"the arm at a few solutions. Cost: targets x seeds x max_iterations x joints, at "
+        f"most {REACH_COST_LIMIT:,} ({MAX_TARGETS:,} targets); up to "
+        f"{REACH_SYNC_COST_LIMIT:,} answered synchronously with 'Prefer: wait=N'."
+    ),
+    inputs_model=SerialReachSpec,
+    run=_run_serial_reach,
+    examples=SERIAL_REACH_EXAMPLES,
+    outputs={
+        "arm": "The arm: source (dh or urdf), convention, joints, joint_names, joint_types, "
+        "planar, task_space.",
+        "length_unit": "The length unit.",
+        "characteristic_length": "The length dividing the linear rows (null: unscaled).",
+        "solver": "'closed-form planar 3R' or 'damped least squares'.",
+        "seeds": "Starting configurations per target of the numerical solver.",
+        "seed": "Seed of the starting configurations.",
+        "max_iterations": "Damped least-squares iterations per target.",
+        "targets": "Per target: position, rpy_deg, reached, configuration, residual "
+        "(position, orientation_deg), tolerance, solutions, manipulability, "
+        "inverse_condition.",
+        "summary": "targets, reached, reached_share, manipulability_min/mean, "
+        "inverse_condition_min/mean (over the reached targets).",
+    },
+    cost=reach_cost,
+    cost_limit=REACH_COST_LIMIT,
+    cost_unit="targets x seeds x iterations x joints",
+    sync_cost_limit=REACH_SYNC_COST_LIMIT,
+    seconds_per_cost=1.5e-6,
+    seconds_per_run=0.05,
+    time_limit_s=TIME_LIMIT_S,
+)
+
 #: Who this family is: the tag its operations are listed under, and its sources.
 FAMILY = FamilyInfo(
     name="serial",
@@ -84,4 +145,4 @@ FAMILY = FamilyInfo(
 )
 
 #: This family's processes, in the order GET /v1/processes lists them.
-PROCESSES = (SERIAL_INDICES,)
+PROCESSES = (SERIAL_INDICES, SERIAL_REACH)

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 from worker.result_paths import ResultPathInfo as R
 
-__all__ = ["SERIAL_INDICES_RESULT_PATHS"]
+__all__ = ["SERIAL_INDICES_RESULT_PATHS", "SERIAL_REACH_RESULT_PATHS"]
 
 SERIAL_INDICES_RESULT_PATHS = (
     R("arm.joints", "-", "$n$", "Movable joints."),
@@ -35,4 +35,41 @@ SERIAL_INDICES_RESULT_PATHS = (
     R("summary.inverse_condition_mean", "-", r"$1/\kappa$", "The mean inverse "
       "condition number."),
     R("summary.outside_limits", "-", "", "Configurations outside the joint limits."),
+)  # fmt: skip
+
+SERIAL_REACH_RESULT_PATHS = (
+    R("arm.joints", "-", "$n$", "Movable joints."),
+    R("characteristic_length", "length", "$L$", "The length dividing the linear rows for "
+      "the inverse condition number (null: unscaled)."),
+    R("seeds", "-", "", "Starting configurations per target of the numerical "
+      "solver (with the closed form: for the targets it does not reach)."),
+    R("seed", "-", "", "Seed of the starting configurations."),
+    R("max_iterations", "-", "", "Damped least-squares iterations per target."),
+    R("targets[].position[]", "length", "$p_t$", "The target point in the base frame."),
+    R("targets[].rpy_deg[]", "deg", "", "The target orientation: roll, pitch, yaw."),
+    R("targets[].configuration[]", "mixed", r"$q_i$", "The solution's joint values: "
+      "degrees (revolute), length_unit (prismatic); the closest found if not reached."),
+    R("targets[].residual.position", "length", r"$|p_t - p|$", "Distance of the tool "
+      "point from the target."),
+    R("targets[].residual.orientation_deg", "deg", r"$\Delta\theta$", "Angle between the "
+      "tool's and the target's rotations (null: position only)."),
+    R("targets[].tolerance.position", "length", "", "Position tolerance used."),
+    R("targets[].tolerance.orientation_deg", "deg", "", "Orientation tolerance used."),
+    R("targets[].solutions", "-", "", "Seeds (or closed-form branches) that reached the "
+      "target."),
+    R("targets[].manipulability", "mixed", "$w$", "Yoshikawa's manipulability at the "
+      "solution (null: not reached)."),
+    R("targets[].inverse_condition", "-", r"$1/\kappa$", "sigma_min / sigma_max of the task "
+      "Jacobian at the solution (null: not reached)."),
+    R("summary.targets", "-", "", "Targets."),
+    R("summary.reached", "-", "", "Targets reached."),
+    R("summary.reached_share", "-", "", "The share of targets reached, in [0, 1]."),
+    R("summary.manipulability_min", "mixed", r"$w_{\min}$", "The least manipulability of "
+      "the reached targets' solutions."),
+    R("summary.manipulability_mean", "mixed", "$w$", "The mean manipulability of "
+      "the reached targets' solutions."),
+    R("summary.inverse_condition_min", "-", r"$1/\kappa_{\min}$", "The least inverse "
+      "condition number of the reached targets' solutions."),
+    R("summary.inverse_condition_mean", "-", r"$1/\kappa$", "The mean inverse condition "
+      "number of the reached targets' solutions."),
 )  # fmt: skip
