@@ -190,3 +190,30 @@ def test_at_a_phone_width_the_explorer_does_not_scroll_sideways(
         drawn(page, 1)
         width, viewport = page.evaluate("[document.documentElement.scrollWidth, innerWidth]")
         assert width <= viewport
+
+
+#: 10 x 10 designs of the 3R arm, two objectives: a small study for its scatter.
+SMALL_STUDY: dict[str, Any] = {
+    "process": "planar3r-dexterity-map",
+    "fixed": {"links": [15, 14, 8], "task_points": [[14, 14]], "grid": {"points_per_axis": 5}},
+    "vary": {"links[0]": [10, 20, 10], "links[2]": [2, 10, 10]},
+    "objectives": {"task_points[].d_z|min": "max", "links|sum": "min"},
+    "plots": False,
+}  # fmt: skip
+
+
+def test_a_study_page_draws_its_objective_scatter_within_the_csp(
+    server: Deployment, browser: Any
+) -> None:
+    r = server.client.post("/v1/processes/design-study/execution", json={"inputs": SMALL_STUDY})
+    assert r.status_code == 201, r.text
+    job_id = r.json()["jobID"]
+    finished_result(server, job_id, timeout=300)
+    with open_page(browser) as offline:
+        page = offline.page
+        page.add_init_script(WATCH_CSP)
+        page.goto(f"{server.base_url}/v1/jobs/{job_id}")
+        page.locator("#study-scatter .main-svg").first.wait_for(timeout=TIMEOUT_MS)
+        assert page.locator("#study-scatter .modebar-btn").count() > 0
+        assert page.evaluate("window.cspViolations") == []
+        assert offline.external == []
