@@ -38,7 +38,7 @@ from tests.integration.servers import deployment
 SWEEPS: dict[str, tuple[str, tuple[float, ...], str]] = {
     "spm-conditioning-map": (
         "alpha1_deg", tuple(55.0 + 0.5 * i for i in range(21)),
-        "Table 1 sampling: 144 samples, 3 maps of 121 x 41",
+        "Table 1 sampling: 144 samples, 3 maps of 73 x 25",
     ),
     "planar3r-dexterity-map": (
         "links.2", tuple(7.0 + 0.1 * i for i in range(21)),

@@ -5,10 +5,10 @@ A slider and a number box per design field, starting from the process's worked e
 (:attr:`~worker.previews.ProcessPreview.start_example`, with the preview's overrides);
 ``explorer.js`` posts each change to ``/pages/processes/{id}/preview`` (a newer change
 cancels the request of an older one) and redraws the heat maps (Plotly, vendored) and
-the indices.  "Run as a job" posts the current inputs to the process's run form (then
-the job's page); "Add to comparison" runs them as a job too and keeps its ID for
-``/pages/compare``.  Without JavaScript the page says the explorer needs it and links
-the process's forms.
+the indices.  "Run as a job" posts the current design to the process's run form (then
+the job's page), at the worked example's resolution and with its plots; "Add to
+comparison" runs it as a job too and keeps its ID for ``/pages/compare``.  Without
+JavaScript the page says the explorer needs it and links the process's forms.
 """
 
 from __future__ import annotations
@@ -58,6 +58,9 @@ def explorer_context(definition: ProcessDefinition) -> dict[str, Any]:
         "csrf_header": CSRF_HEADER,
         "inputs": start,
         "fields": fields,
+        # what a job of the current design takes from the worked example instead of
+        # the explorer's start (its resolution, its plots): null = the input's default
+        "job_restores": {key: example.inputs.get(key) for key in spec.start_overrides},
     }
     return {
         "process": definition,

@@ -206,7 +206,15 @@
 
   function jobInputs() {
     var copy = JSON.parse(JSON.stringify(inputs));
-    delete copy.plots;  // a job draws its plots
+    // a job takes the worked example's resolution and plots, not the explorer's
+    Object.keys(config.job_restores || {}).forEach(function (key) {
+      var value = config.job_restores[key];
+      if (value === null || value === undefined) {
+        delete copy[key];
+      } else {
+        copy[key] = value;
+      }
+    });
     return JSON.stringify(copy, null, 2);
   }
 
