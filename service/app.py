@@ -28,6 +28,7 @@ from service.pages import (
     STATIC_PREFIX,
     Pages,
     actions,
+    explorer,
     login,
     methods,
     queue_page,
@@ -35,10 +36,20 @@ from service.pages import (
     workflow,
 )
 from service.pages import routes as v1_pages
+from service.preview_rate import PreviewRate
 from service.problems import PROBLEM_TYPES, problem_response
 from service.request_guard import RequestGuard
 from service.request_id import RequestId
-from service.routes import designs, health, job_events, jobs, landing, processes, reuse
+from service.routes import (
+    designs,
+    health,
+    job_events,
+    jobs,
+    landing,
+    previews,
+    processes,
+    reuse,
+)
 from service.routes.process_operations import (
     execution_router,
     family_of,
@@ -194,6 +205,7 @@ def create_app(settings: Settings, *, registry: ProcessRegistry | None = None) -
     app.include_router(v1_pages.router)
     app.include_router(execution_router(registry))
     app.include_router(processes.router)
+    app.include_router(previews.router)  # the live explorer's, nothing stored
     app.include_router(jobs.router)
     app.include_router(designs.router)
     app.include_router(reuse.router)
@@ -211,6 +223,9 @@ def create_app(settings: Settings, *, registry: ProcessRegistry | None = None) -
     app.include_router(study_actions.router)
     app.include_router(queue_page.router)
     app.include_router(login.router)
+    app.include_router(previews.page_router)
+    app.include_router(explorer.router)
+    app.state.preview_rate = PreviewRate(settings.submit_rate_per_min)
     app.mount(STATIC_PREFIX, StaticFiles(directory=STATIC_DIR), name="pages-static")
 
     @app.get(

@@ -51,6 +51,7 @@ NOT_A_DOCUMENT: dict[tuple[str, str], str] = {
     ("GET", "/pages/jobs/{job_id}/edit"): "a page (the process form, pre-filled)",
     ("GET", "/pages/jobs/{job_id}/dismiss"): "a page asking to confirm, or a redirect",
     ("GET", "/pages/compare"): "a page",
+    ("GET", "/pages/processes/{process_id}/explore"): "a page (the live explorer)",
     ("POST", "/pages/jobs/{job_id}/designs/{index}/run"): "a redirect or a page",
     ("GET", "/pages/jobs/{job_id}/designs/{index}/edit"): "a page (the process form, pre-filled)",
     ("GET", "/queue"): "a page",

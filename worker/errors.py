@@ -7,6 +7,7 @@
     ├── CostLimitExceeded           the requested work exceeds the process's cost limit
     ├── IdempotencyConflict         an Idempotency-Key reused with another request body
     ├── NoSuchProcess               unknown process ID
+    │   └── NoPreview               a process without a preview (the live explorer's)
     ├── NoSuchJob                   unknown job ID
     ├── NoSuchArtifact              unknown artifact name for a job
     ├── ResultNotReady              the job has not finished yet
@@ -39,6 +40,7 @@ __all__ = [
     "JobDismissed",
     "JobExpired",
     "JobFailed",
+    "NoPreview",
     "NoSuchArtifact",
     "NoSuchJob",
     "NoSuchProcess",
@@ -141,3 +143,7 @@ class StorageFull(StoreUnavailable):
 
 class StorageError(StoreUnavailable):
     """The job store cannot read or write its files (corrupt, read-only, I/O error)."""
+
+
+class NoPreview(NoSuchProcess):
+    """This process has no preview; run it as a job."""

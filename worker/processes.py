@@ -20,19 +20,23 @@ from pydantic import BaseModel
 
 from worker.contract import ChildEnd, JobContext, JobOutcome
 from worker.errors import NoSuchProcess
+from worker.previews import DataChart, PreviewField, ProcessPreview
 from worker.result_paths import ResultPathInfo
 from worker.study_kernels import StudyKernel
 
 __all__ = [
     "ChildFiles",
     "ChildResults",
+    "DataChart",
     "FamilyInfo",
     "FamilyPackage",
     "FanOutSteps",
     "PaperPoint",
+    "PreviewField",
     "ProcessDefinition",
     "ProcessExample",
     "ProcessFile",
+    "ProcessPreview",
     "ProcessRegistry",
     "ResultPathInfo",
     "StudyKernel",
@@ -176,6 +180,11 @@ class ProcessDefinition:
     #: ``chunk_size``): left out of the result key, so a re-run differing only in them
     #: reuses the stored result (docs/reuse.md).
     unkeyed_inputs: tuple[str, ...] = ()
+    #: The live explorer's evaluation (``POST /v1/processes/{id}/preview``,
+    #: :mod:`worker.previews`); None: the process has no preview.
+    preview: ProcessPreview | None = None
+    #: The heat map a finished job's page draws from the job's CSV (plots stay).
+    data_chart: DataChart | None = None
 
     def keyed_inputs(self, inputs: Mapping[str, Any]) -> dict[str, Any]:
         """The canonical inputs the result key is a digest of: ``inputs`` without

@@ -78,14 +78,18 @@ def prefers_html(accept: str | None) -> bool:
 
 #: Where the page actions live (forms post there); they always answer with pages.
 PAGE_ACTIONS = "/pages/"
+#: Page actions a page's script calls for JSON (the live explorer's preview): their
+#: problems stay problem documents.
+_JSON_ACTIONS = ("/preview",)
 
 
 def wants_html(request: Request) -> bool:
-    """Whether to answer this request (or its problem) with a page: a page action;
+    """Whether to answer this request (or its problem) with a page: a page action
+    (but for the JSON ones a page's script calls);
     ``f=html``; or no ``f`` and an ``Accept`` preferring HTML.  Only GET and HEAD
     negotiate: the API's writes keep their JSON answers whatever the client accepts."""
     if request.url.path.startswith(PAGE_ACTIONS):
-        return True
+        return not request.url.path.endswith(_JSON_ACTIONS)
     if request.method not in ("GET", "HEAD"):
         return False
     f = request.query_params.get("f")

@@ -15,6 +15,7 @@ from fastapi import Request
 from fastapi.responses import HTMLResponse
 
 from service.documents import artifact_link, as_json, job_href, status_document
+from service.pages.data_charts import data_chart_context
 from service.pages.input_table import input_rows
 from service.pages.job_timing import duration_s, duration_text, job_timing
 from service.pages.json_text import compact_json
@@ -252,6 +253,7 @@ def job_page(
         "rerun_href": f"/pages/jobs/{job.job_id}/edit" if definition is not None else "",
         "problem": _failure(job),
         "plots": [],
+        "data_chart": {},
         "notes": [],
         "warnings": [],
         "errata_count": 0,
@@ -264,6 +266,7 @@ def job_page(
         notes = _notes(result, warnings)
         context.update(
             plots=_plots(job.artifacts, f"/v1/jobs/{job.job_id}"),
+            data_chart=data_chart_context(definition, job),
             notes=notes,
             warnings=warnings,
             errata_count=sum(1 for n in notes if n["erratum"]),

@@ -29,6 +29,10 @@ from worker.families.planar_parallel.examples import (
     OPTIMISATION_EXAMPLES,
     OPTIMISATION_PAPER_POINTS,
 )
+from worker.families.planar_parallel.previews import (
+    CONDITIONING_MAP_CHART,
+    CONDITIONING_MAP_PREVIEW,
+)
 from worker.families.planar_parallel.result_paths import (
     CONDITIONING_MAP_RESULT_PATHS,
     OPTIMISATION_RESULT_PATHS,
@@ -56,6 +60,8 @@ def _run_optimisation(spec: OptimisationSpec, ctx: JobContext) -> JobOutcome:
 
 CONDITIONING_MAP = ProcessDefinition(
     id="planar2dof-conditioning-map",
+    preview=CONDITIONING_MAP_PREVIEW,
+    data_chart=CONDITIONING_MAP_CHART,
     # 1.1: figures: a contour label only where it sits on its line.
     # 1.2: W_kappa0 found and measured at any size (thin sets, sets between columns);
     # largest_inverse_condition and below_resolution added.

@@ -32,6 +32,7 @@ from worker.families.planar_serial.examples import (
     DEXTERITY_MAP_EXAMPLES,
     SYNTHESIS_EXAMPLES,
 )
+from worker.families.planar_serial.previews import DEXTERITY_MAP_CHART, DEXTERITY_MAP_PREVIEW
 from worker.families.planar_serial.result_paths import (
     DESIGN_RESULT_PATHS,
     DEXTERITY_MAP_RESULT_PATHS,
@@ -77,6 +78,8 @@ DEXTERITY_MAP = ProcessDefinition(
     # radial section's ray (the unlimited arm's moved under areas.unlimited_reference);
     # summary.warnings and unreachable_task_points (issue 26)
     version="2.0.0",
+    preview=DEXTERITY_MAP_PREVIEW,
+    data_chart=DEXTERITY_MAP_CHART,
     result_paths=DEXTERITY_MAP_RESULT_PATHS,
     title="Three-link planar arm: dexterity map",
     method_doc="planar-serial",

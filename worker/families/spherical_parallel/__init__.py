@@ -40,6 +40,7 @@ from worker.families.spherical_parallel.examples import (
     OPTIMISATION_EXAMPLES,
 )
 from worker.families.spherical_parallel.optimisation_spec import SCREEN_PER_START, OptimisationSpec
+from worker.families.spherical_parallel.previews import CONDITIONING_MAP_PREVIEW
 from worker.families.spherical_parallel.result_paths import (
     CONDITIONING_MAP_RESULT_PATHS,
     DESIGN_SPACE_RESULT_PATHS,
@@ -93,6 +94,7 @@ _INDICES = (
 CONDITIONING_MAP = ProcessDefinition(
     id="spm-conditioning-map",
     version="1.1.0",  # torsion_sweeps: 1/kappa [-]
+    preview=CONDITIONING_MAP_PREVIEW,
     result_paths=CONDITIONING_MAP_RESULT_PATHS,
     study_kernel=CONDITIONING_MAP_KERNEL,
     paper_points=CONDITIONING_MAP_PAPER_POINTS,
