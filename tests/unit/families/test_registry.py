@@ -52,6 +52,8 @@ def test_every_process_keeps_the_contract(definition: ProcessDefinition) -> None
     assert (ROOT / "docs/methods" / f"{definition.method_doc}.md").is_file()
     assert definition.files, f"{definition.id} declares no files"
     assert 0 <= definition.sync_cost_limit <= definition.cost_limit
+    if definition.preview is not None:  # a preview costs no more than a synchronous answer
+        assert definition.preview.cost_limit <= definition.sync_cost_limit
     assert definition.time_limit_s > 0
     json.dumps(definition.describe())
     json.dumps(definition.summary())

@@ -16,6 +16,7 @@ from __future__ import annotations
 from worker.contract import JobContext, JobOutcome
 from worker.families.planar_parallel.costs import (
     CONDITIONING_MAP_COST_LIMIT,
+    CONDITIONING_MAP_SYNC_COST_LIMIT,
     CONDITIONING_MAP_TIME_LIMIT_S,
     COST_UNIT,
     OPTIMISATION_COST_LIMIT,
@@ -121,6 +122,7 @@ CONDITIONING_MAP = ProcessDefinition(
     },
     cost=conditioning_map_cost,
     cost_limit=CONDITIONING_MAP_COST_LIMIT,
+    sync_cost_limit=CONDITIONING_MAP_SYNC_COST_LIMIT,
     seconds_per_cost=1.1e-6,
     cost_unit=COST_UNIT,
     time_limit_s=CONDITIONING_MAP_TIME_LIMIT_S,

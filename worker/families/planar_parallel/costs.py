@@ -24,6 +24,7 @@ from worker.families.planar_parallel.specs import (
 
 __all__ = [
     "CONDITIONING_MAP_COST_LIMIT",
+    "CONDITIONING_MAP_SYNC_COST_LIMIT",
     "CONDITIONING_MAP_TIME_LIMIT_S",
     "COST_UNIT",
     "OPTIMISATION_COST_LIMIT",
@@ -43,6 +44,11 @@ FIGURE_COST = FIG9_MESH**2 + MAP_POINTS_PER_AXIS**2
 
 #: A 2001 x 2001 map with W_kappa0 and 1000 points (4,262,122) fits.
 CONDITIONING_MAP_COST_LIMIT = 5_000_000
+#: Up to this cost a map is answered synchronously (``Prefer: wait=N``) and previewed
+#: by the live explorer: the paper's figures (a 301 x 301 grid with W_kappa0's exact
+#: boundary and a few given points: a few seconds as a job, plots included; a preview,
+#: which skips the boundary, ~70 ms on 201 x 201).
+CONDITIONING_MAP_SYNC_COST_LIMIT = 301 * 301 + BOUNDARY_SEARCH_COST + 1000
 #: About 12x the default sweep (151 deltas, 101² mesh: 10,754,353): e.g. 1501 deltas
 #: (step 0.001) on a 101² mesh, or the default sweep on an 801² mesh.
 OPTIMISATION_COST_LIMIT = 120_000_000

@@ -8,14 +8,15 @@ from __future__ import annotations
 
 from typing import Any
 
+from worker.families.planar_parallel.costs import CONDITIONING_MAP_SYNC_COST_LIMIT
 from worker.families.planar_parallel.specs import ConditioningMapSpec
 from worker.previews import DataChart, PreviewField, ProcessPreview
 
 __all__ = ["CONDITIONING_MAP_CHART", "CONDITIONING_MAP_PREVIEW", "PREVIEW_COST_LIMIT"]
 
-#: The process prices the exact W_kappa0 boundary (801 x 321) a preview does not
-#: compute: a 201 x 201 grid with a limit and a few given points fits (~70 ms).
-PREVIEW_COST_LIMIT = 201 * 201 + 801 * 321 + 1000
+#: A preview may cost what a synchronous answer may (the process prices the exact
+#: W_kappa0 boundary, which a preview does not compute: a 201 x 201 grid fits, ~70 ms).
+PREVIEW_COST_LIMIT = CONDITIONING_MAP_SYNC_COST_LIMIT
 
 
 def _conditioning_preview(spec: ConditioningMapSpec) -> dict[str, Any]:

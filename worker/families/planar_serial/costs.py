@@ -28,9 +28,10 @@ __all__ = [
 
 #: Largest accepted cost: a 2001 x 2001 map sampled every 0.5° (720 samples) fits.
 COST_LIMIT = 3_000_000_000
-#: Requests up to this cost may be answered synchronously (``Prefer: wait=N``): an
-#: exact map of up to 101 x 101 points.
-SYNC_COST_LIMIT = 101 * 101
+#: Requests up to this cost may be answered synchronously (``Prefer: wait=N``) and
+#: previewed by the live explorer: an exact map of up to 101 x 101 points, under joint
+#: limits too (exact events: at most 21 sub-arcs a node; ~10 ms of arithmetic).
+SYNC_COST_LIMIT = 101 * 101 * 21
 #: Wall-clock limit of one job attempt, in seconds.
 TIME_LIMIT_S = 1800.0
 #: The least time limit of a planar3r-design attempt, however cheap.

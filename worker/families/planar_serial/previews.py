@@ -7,14 +7,14 @@ from __future__ import annotations
 
 from typing import Any
 
+from worker.families.planar_serial.costs import SYNC_COST_LIMIT
 from worker.families.planar_serial.specs import DexterityMapSpec
 from worker.previews import DataChart, PreviewField, ProcessPreview
 
 __all__ = ["DEXTERITY_MAP_CHART", "DEXTERITY_MAP_PREVIEW", "PREVIEW_COST_LIMIT"]
 
-#: A 101 x 101 map under joint limits with exact events (at most 21 sub-arcs a node):
-#: above the synchronous limit (101 x 101, one orientation), but ~10 ms of work.
-PREVIEW_COST_LIMIT = 101 * 101 * 21
+#: A preview may cost what a synchronous answer may: a 101 x 101 map under joint limits.
+PREVIEW_COST_LIMIT = SYNC_COST_LIMIT
 
 
 def _dexterity_preview(spec: DexterityMapSpec) -> dict[str, Any]:
