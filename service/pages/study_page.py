@@ -15,9 +15,9 @@ from urllib.parse import urlencode
 from fastapi import Request
 
 from service.deps import Api
+from service.study_labels import column_label
 from service.study_tables import STUDY_PROCESS, study_table
 from worker.contract import JobRecord, JobStatus
-from worker.result_paths import plain_symbol
 from worker.store.records import JobFilter
 from worker.studies.design_table import (
     DesignQuery,
@@ -43,11 +43,6 @@ def _flag(value: str | None) -> bool | None:
 
 def _number(value: float | None) -> str:
     return "–" if value is None else f"{value:.6g}"
-
-
-def _label(column: Any) -> str:
-    name = plain_symbol(column.symbol) if column.symbol else column.path
-    return name if column.unit in ("", "-") else f"{name} [{column.unit}]"
 
 
 def _chunks(api: Api, job: JobRecord) -> list[dict[str, str]]:
@@ -76,7 +71,7 @@ def _table_context(job: JobRecord, table: DesignTable, params: Mapping[str, str]
         return f"{base}?{urlencode({k: v for k, v in merged.items() if v})}#designs"
 
     columns = [
-        {"key": c.key, "label": _label(c), "kind": c.kind, "goal": c.goal,
+        {"key": c.key, "label": column_label(c), "kind": c.kind, "goal": c.goal,
          "sort_href": href(sort=("-" if query.sort == c.key else "") + c.key),
          "sorted": "ascending" if query.sort == c.key else
                    "descending" if query.sort == f"-{c.key}" else ""}

@@ -19,6 +19,7 @@ from starlette.concurrency import run_in_threadpool
 from service.deps import ApiDep
 from service.problems import parameter_error
 from service.schemas import Link
+from service.study_labels import column_label
 from service.study_tables import study_table
 from worker.studies.design_table import (
     DesignQuery,
@@ -46,7 +47,9 @@ class DesignColumnDocument(_Document):
     path: str = Field(description="The study's varied input or objective (result path).")
     kind: str = Field(description="parameter (a varied input) or objective.")
     unit: str
-    symbol: str
+    symbol: str = Field(description="The declared symbol (mathtext, e.g. `$d_z$`).")
+    label: str = Field(description="For axes and headers: the symbol as plain text (or the "
+                       "path) with the unit, e.g. `d_z` or `l_i [cm]`.")  # fmt: skip
     goal: str = Field(description="max or min for an objective; '' for a parameter.")
     description: str = Field(description="What the number is (the process's result path).")
 
@@ -176,6 +179,7 @@ def _columns(table: DesignTable, described: dict[str, str]) -> list[DesignColumn
     return [
         DesignColumnDocument(
             key=c.key,
+            label=column_label(c),
             path=c.path,
             kind=c.kind,
             unit=c.unit,

@@ -61,6 +61,8 @@ def test_ten_thousand_designs_sort_filter_page_and_open(
         page.goto(f"{server.base_url}/v1/jobs/{study}")
         if javascript:
             page.wait_for_selector("#designs[data-loaded]")
+            page.wait_for_selector("#study-scatter[data-drawn]")  # Plotly, under the CSP
+            page.locator("#designs").screenshot(path=str(shots / "study-explorer.png"))
         assert "10,000 designs" in page.locator("#designs-count").inner_text()
         first = indices(page)
         assert len(first) == 25 and first == sorted(first)

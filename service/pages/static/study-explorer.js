@@ -176,9 +176,7 @@
     const data = await answer.json();
     const label = (key) => {
       const c = columns.find((col) => col.key === key);
-      if (!c) return key;
-      const name = c.symbol || c.path;
-      return c.unit && c.unit !== "-" ? name + " [" + c.unit + "]" : name;
+      return c ? c.label : key;
     };
     const traces = [];
     if (data.bins) {

@@ -33,6 +33,9 @@ async def test_a_study_is_paged_sorted_and_filtered(tmp_path: Path) -> None:
         assert first["total"] == 30 and first["matched"] == 30 and len(first["designs"]) == 7
         columns = {c["key"]: c for c in first["columns"]}
         assert columns["links_sum"]["goal"] == "min" and columns["links_0"]["kind"] == "parameter"
+        assert columns["links_0"]["label"] == "links[0] [units]"
+        assert columns["task_points_d_z_min"]["label"] == "min(d_z)"
+        assert columns["links_sum"]["label"] == "sum(l_i) [units]"
         assert (
             columns["task_points_d_z_min"]["symbol"]
             and columns["task_points_d_z_min"]["description"]
