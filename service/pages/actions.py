@@ -32,7 +32,6 @@ from starlette.concurrency import run_in_threadpool
 
 from service.deps import ApiDep
 from service.documents import job_href
-from service.errors import dexlab_problem
 from service.job_lookup import missing_job
 from service.pages import views
 from service.pages.builder_form import (
@@ -45,15 +44,9 @@ from service.pages.builder_form import (
 from service.pages.forms import check_csrf, check_form_origin, read_form
 from service.pages.job_forms import rerun_form
 from service.pages.own_arm import own_arm_form, robot_from_form
+from service.pages.page_submission import PageRefusal, submit_from_page
 from service.problems import problem_document
 from service.request_guard import json_depth
-from worker.errors import (
-    CostLimitExceeded,
-    InvalidInputs,
-    QueueFull,
-    QuotaExceeded,
-)
-from worker.submission import submit
 
 __all__ = ["router"]
 
@@ -94,7 +87,7 @@ def _example_index(value: str, count: int) -> int:
 @router.post("/processes/{process_id}/run")
 async def run_process(process_id: str, request: Request, api: ApiDep) -> Response:
     check_form_origin(request)
-    store, registry, settings = api.store, api.registry, api.settings
+    registry, settings = api.registry, api.settings
     definition = registry.require(process_id)
     form = await read_form(request)
     check_csrf(request, form)
@@ -106,29 +99,19 @@ async def run_process(process_id: str, request: Request, api: ApiDep) -> Respons
         examples.insert(0, rerun_form(source_job, text))
         index = 0
     own_arm = "robot_kind" in form  # the "Your own arm" form: a pasted DH table or URDF
-    retry_after: str | None = None
     try:
         inputs = _parse_inputs(text, settings.max_json_depth)
+    except _BadText as exc:
+        detail = f"The inputs are not valid JSON: {exc}."
+        refusal = PageRefusal(problem_document("malformed-request", detail=detail))
+    else:
         if own_arm:
             inputs["robot"] = robot_from_form(form)
-        job, _ = await run_in_threadpool(
-            submit, store, registry, settings, process_id, inputs, None, api.dispatcher,
-            api.identity.name,
-        )  # fmt: skip
-    except _BadText as exc:
-        problem = problem_document(
-            "malformed-request", detail=f"The inputs are not valid JSON: {exc}."
-        )
-    except InvalidInputs as exc:
-        problem = problem_document("invalid-inputs", detail=exc.detail, errors=exc.errors)
-    except CostLimitExceeded as exc:
-        problem = problem_document("cost-limit-exceeded", detail=exc.detail)
-    except (QuotaExceeded, QueueFull) as exc:  # the page says so, with Retry-After
-        answer = dexlab_problem(request, exc)
-        problem = json.loads(bytes(answer.body))
-        retry_after = answer.headers.get("Retry-After")
-    else:
-        return RedirectResponse(job_href(job.job_id), status_code=303)
+        answer = await submit_from_page(request, api, process_id, inputs)
+        if not isinstance(answer, PageRefusal):
+            return answer
+        refusal = answer
+    problem = refusal.problem
     extra = {}
     if own_arm:  # the problem goes back to the form it came from
         extra["own_arm"] = own_arm_form(definition, form, problem)
@@ -141,9 +124,7 @@ async def run_process(process_id: str, request: Request, api: ApiDep) -> Respons
         draw = partial(views.process_page, examples=examples, status_code=problem["status"],
                        extra=extra)  # fmt: skip
     page = await run_in_threadpool(draw, request, api.pages, registry, definition)
-    if retry_after is not None:
-        page.headers["Retry-After"] = retry_after
-    return page
+    return refusal.answered(page)
 
 
 @router.post(BUILD_ACTION.removeprefix(router.prefix))
@@ -153,37 +134,23 @@ async def build_study(request: Request, api: ApiDep) -> Response:
     form = await read_form(request, max_fields=MAX_BUILDER_FIELDS)
     check_csrf(request, form)
     inputs = chosen_study(api.registry, form)
-    retry_after: str | None = None
     if inputs is None:
-        problem = problem_document(
+        refusal = PageRefusal(problem_document(
             "invalid-inputs",
             detail="Choose a process a study can run and one of its worked examples first.",
             errors=[{"field": "process", "type": "value_error",
                      "message": "not a process and worked example the builder offers"}],
-        )  # fmt: skip
+        ))  # fmt: skip
     else:
-        try:
-            job, _ = await run_in_threadpool(
-                submit, api.store, api.registry, api.settings, STUDY_PROCESS, inputs, None,
-                api.dispatcher, api.identity.name,
-            )  # fmt: skip
-        except InvalidInputs as exc:
-            problem = problem_document("invalid-inputs", detail=exc.detail, errors=exc.errors)
-        except CostLimitExceeded as exc:
-            problem = problem_document("cost-limit-exceeded", detail=exc.detail)
-        except (QuotaExceeded, QueueFull) as exc:
-            answer = dexlab_problem(request, exc)
-            problem = json.loads(bytes(answer.body))
-            retry_after = answer.headers.get("Retry-After")
-        else:
-            return RedirectResponse(job_href(job.job_id), status_code=303)
+        answer = await submit_from_page(request, api, STUDY_PROCESS, inputs)
+        if not isinstance(answer, PageRefusal):
+            return answer
+        refusal = answer
     page = await run_in_threadpool(
-        partial(study_builder_page, problem=problem),
+        partial(study_builder_page, problem=refusal.problem),
         request, api.pages, api.registry, definition, form,
     )  # fmt: skip
-    if retry_after is not None:
-        page.headers["Retry-After"] = retry_after
-    return page
+    return refusal.answered(page)
 
 
 @router.post("/jobs/{job_id}/dismiss")

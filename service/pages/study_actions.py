@@ -15,32 +15,24 @@ a 404 page naming it.
 
 from __future__ import annotations
 
-import json
 from typing import Any
 
 from fastapi import APIRouter, Request
-from fastapi.responses import RedirectResponse, Response
+from fastapi.responses import Response
 from starlette.concurrency import run_in_threadpool
 
 from service.deps import Api, ApiDep
-from service.documents import job_href
-from service.errors import dexlab_problem
 from service.job_lookup import find_job
 from service.pages.forms import check_csrf, check_form_origin, read_form
 from service.pages.json_text import compact_json
+from service.pages.page_submission import PageRefusal, submit_from_page
 from service.pages.views import example_forms, process_page
-from service.problems import problem_document
 from service.study_tables import STUDY_PROCESS
 from worker.errors import (
-    CostLimitExceeded,
-    InvalidInputs,
     NoSuchArtifact,
-    QueueFull,
-    QuotaExceeded,
 )
 from worker.processes import ProcessDefinition
 from worker.studies.evaluation import one_design_inputs
-from worker.submission import submit
 
 __all__ = ["router"]
 
@@ -85,23 +77,10 @@ async def run_design(job_id: str, index: int, request: Request, api: ApiDep) -> 
     check_form_origin(request)
     check_csrf(request, await read_form(request))
     definition, inputs = await run_in_threadpool(_design, api, job_id, index)
-    retry_after: str | None = None
-    try:
-        job, _ = await run_in_threadpool(
-            submit, api.store, api.registry, api.settings, definition.id, inputs, None,
-            api.dispatcher, api.identity.name,
-        )  # fmt: skip
-    except InvalidInputs as exc:
-        problem = problem_document("invalid-inputs", detail=exc.detail, errors=exc.errors)
-    except CostLimitExceeded as exc:
-        problem = problem_document("cost-limit-exceeded", detail=exc.detail)
-    except (QuotaExceeded, QueueFull) as exc:
-        answer = dexlab_problem(request, exc)
-        problem = json.loads(bytes(answer.body))
-        retry_after = answer.headers.get("Retry-After")
-    else:
-        return RedirectResponse(job_href(job.job_id), status_code=303)
-    form = _form(job_id, index, compact_json(inputs), problem)
+    answer = await submit_from_page(request, api, definition.id, inputs)
+    if not isinstance(answer, PageRefusal):
+        return answer
+    form = _form(job_id, index, compact_json(inputs), answer.problem)
     page = await run_in_threadpool(
         lambda: process_page(
             request,
@@ -109,9 +88,7 @@ async def run_design(job_id: str, index: int, request: Request, api: ApiDep) -> 
             api.registry,
             definition,
             examples=[form, *example_forms(definition)],
-            status_code=problem["status"],
+            status_code=answer.status,
         )
     )
-    if retry_after is not None:
-        page.headers["Retry-After"] = retry_after
-    return page
+    return answer.answered(page)
