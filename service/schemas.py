@@ -224,8 +224,8 @@ class ResultPathDocument(_Document):
                       "every element of a list, '*' for every key of a mapping keyed by the "
                       "request's own paths (e.g. 'task_points[].d_z').")  # fmt: skip
     unit: str = Field(description="'-' (a pure number), 'length' (the job's length_unit), "
-                      "'length^2', 'length^4', 'length^n', 'l1', 'l1^2', 'deg', 'deg^2' or "
-                      "'mixed' (docs/data-files.md).")  # fmt: skip
+                      "'length^2', 'length^3', 'length^4', 'length^n', 'l1', 'l1^2', 'deg', "
+                      "'deg^2' or 'mixed' (docs/data-files.md).")  # fmt: skip
     symbol: str = Field(description="The symbol as mathtext ('$d_z$'); '' for none.")
     description: str
     kernel: bool = Field(False, description="true where the process's study kernel computes "

@@ -42,6 +42,7 @@ RESULT_UNITS: Mapping[str, str] = {
     "-": "a pure number: a ratio, an index, a count, a rank or a code",
     "length": "the job's length_unit",
     "length^2": "an area: the job's length_unit squared",
+    "length^3": "a volume: the job's length_unit cubed",
     "length^4": "the job's length_unit to the fourth power (a chain's Q, eq 3)",
     "length^n": "the job's length_unit to the power n, the number of lengths multiplied "
     "(a chain's P, eq 1)",

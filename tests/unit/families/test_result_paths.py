@@ -32,6 +32,10 @@ DEFINITIONS = list(default_registry())
 
 #: Small inputs reaching result paths no worked example reports, per process.
 EXTRA_RUNS: dict[str, list[dict[str, Any]]] = {
+    "serial-workspace-map": [
+        {"robot": {"dh": [{"a": 1.0}, {"a": 1.0}]}, "samples": 2000, "voxel_size": 0.5,
+         "orientation_bins": 8, "characteristic_length": 2.0, "length_unit": "m"},
+    ],
     "planar3r-synthesis": [
         {"task_points": [[10, 0], [15, 5]], "l3": 5, "grid": {"points_per_axis": 11},
          "joint_limits_deg": [[-150, 150], [-150, 150], [-175, 175]],

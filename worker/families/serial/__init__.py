@@ -189,10 +189,10 @@ SERIAL_WORKSPACE_MAP = ProcessDefinition(
         "voxel_size": "Voxel (pixel) edge.",
         "orientation_bins": "count, of (tool angle or tool axis), bands, cells_per_band.",
         "grid": "axes, shape, first and last node per axis, cell (pixel or voxel).",
-        "summary": "samples, samples_in_grid, voxels, reached_voxels, reached_volume (area "
-        "for a planar arm), mean_reachability_index, full_orientation_voxels, "
+        "summary": "samples, samples_in_grid, voxels, reached_voxels, reached_volume "
+        "(reached_area for a planar arm), mean_reachability_index, full_orientation_voxels, "
         "manipulability_min/max, inverse_condition_mean/max.",
-        "convergence": "samples (N/8, N/4, N/2, N), reached_volume, "
+        "convergence": "samples (N/8, N/4, N/2, N), reached_volume (reached_area), "
         "mean_reachability_index, relative_change_volume, relative_change_index, "
         "tolerance, met.",
     },

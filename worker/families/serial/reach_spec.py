@@ -18,11 +18,11 @@ from pydantic import BeforeValidator, Field, model_validator
 
 from worker.common.field_errors import field_error
 from worker.common.specs import FrozenSpec
+from worker.families.serial.arm_inputs import ArmInputs, characteristic_length_field, plots_field
 from worker.families.serial.kinematics.arm import SerialArm, rpy_transform
 from worker.families.serial.kinematics.chain import forward_kinematics
 from worker.families.serial.kinematics.inverse import PoseTargets, arm_scale
-from worker.families.serial.robot_input import MAX_LENGTH, RobotSpec
-from worker.families.serial.specs import length_unit_field
+from worker.families.serial.robot_input import MAX_LENGTH
 
 __all__ = [
     "DEFAULT_ORIENTATION_TOLERANCE_DEG",
@@ -82,10 +82,9 @@ class ReachTarget(FrozenSpec):
     tolerance: TargetTolerance = Field(TargetTolerance(), description="Tolerances.")
 
 
-class SerialReachSpec(FrozenSpec):
+class SerialReachSpec(ArmInputs):
     """Inputs of ``serial-reach``."""
 
-    robot: RobotSpec = Field(..., description="The arm: a DH table or a URDF chain.")
     # no min_length: pydantic would add "at least 1 item" whenever an item is refused;
     # an empty list is refused before the items instead (the schema keeps minItems)
     targets: Annotated[tuple[ReachTarget, ...], BeforeValidator(_not_empty)] = Field(
@@ -104,12 +103,8 @@ class SerialReachSpec(FrozenSpec):
         "auto", description="auto: closed form for a planar 3R arm, damped least squares "
         "otherwise; numerical: damped least squares always."
     )  # fmt: skip
-    characteristic_length: float | None = Field(
-        None, gt=0.0, le=1e6, description="Divides the Jacobian's linear rows before the "
-        "inverse condition number (length_unit); null: unscaled."
-    )  # fmt: skip
-    length_unit: str = length_unit_field()
-    plots: bool = Field(True, description="Render the PNG/SVG plots. false: the result only.")
+    characteristic_length: float | None = characteristic_length_field()
+    plots: bool = plots_field()
 
     @model_validator(mode="after")
     def _targets_fit_the_arm(self) -> SerialReachSpec:
@@ -130,10 +125,6 @@ class SerialReachSpec(FrozenSpec):
                 raise field_error(self, ("targets", k, "rpy_deg"), "a planar arm's tool "
                                   "turns about z only: give [0, 0, phi]", list(rpy))  # fmt: skip
         return self
-
-    def arm(self) -> SerialArm:
-        """The validated arm."""
-        return self.robot.arm(self.length_unit)
 
     def pose_targets(self, arm: SerialArm) -> PoseTargets:
         """The targets as arrays (a planar target's missing z: the arm's plane)."""

@@ -81,7 +81,8 @@ SERIAL_REACH_RESULT_PATHS = (
 SERIAL_WORKSPACE_MAP_RESULT_PATHS = (
     R("arm.joints", "-", "$n$", "Movable joints."),
     R("characteristic_length", "length", "$L$", "The length dividing the linear rows for "
-      "the inverse condition number (null: unscaled)."),
+      "the inverse condition number (null: unscaled).",
+      optional="when the request gives a characteristic_length"),
     R("seed", "-", "", "Seed of the joint sampler."),
     R("voxel_size", "length", "$h$", "Edge of a voxel (pixel for a planar arm)."),
     R("orientation_bins.count", "-", "$K$", "Orientation bins."),
@@ -94,8 +95,10 @@ SERIAL_WORKSPACE_MAP_RESULT_PATHS = (
     R("summary.samples_in_grid", "-", "", "Samples whose tool point fell in the grid."),
     R("summary.voxels", "-", "", "Voxels (pixels) of the grid."),
     R("summary.reached_voxels", "-", "", "Voxels with at least one sample."),
-    R("summary.reached_volume", "length^3", "$V$", "Reached voxels x voxel volume (a "
-      "planar arm: reached pixels x pixel area, length^2)."),
+    R("summary.reached_volume", "length^3", "$V$", "Reached voxels x voxel volume "
+      "(a spatial arm).", optional="a spatial arm's map (a planar arm's: reached_area)"),
+    R("summary.reached_area", "length^2", "$A$", "Reached pixels x pixel area (a planar "
+      "arm).", optional="a planar arm's map (a spatial arm's: reached_volume)"),
     R("summary.mean_reachability_index", "-", r"$r$", "Mean over the reached voxels "
       "of the fraction of orientation bins reached."),
     R("summary.full_orientation_voxels", "-", "", "Voxels reaching every orientation bin."),
@@ -108,8 +111,10 @@ SERIAL_WORKSPACE_MAP_RESULT_PATHS = (
     R("summary.inverse_condition_max", "-", r"$1/\kappa_{\max}$", "The largest inverse "
       "condition number sampled in the grid."),
     R("convergence.samples[]", "-", "", "The prefixes N/8, N/4, N/2, N of the samples."),
-    R("convergence.reached_volume[]", "length^3", "$V$", "Reached volume (area) at each "
-      "prefix."),
+    R("convergence.reached_volume[]", "length^3", "$V$", "Reached volume at each prefix.",
+      optional="a spatial arm's map"),
+    R("convergence.reached_area[]", "length^2", "$A$", "Reached area at each prefix (a "
+      "planar arm).", optional="a planar arm's map"),
     R("convergence.mean_reachability_index[]", "-", r"$r$", "Mean reachability index "
       "at each prefix."),
     R("convergence.relative_change_volume[]", "-", "", "|V_k - V_{k-1}| / V_k over each "

@@ -7,11 +7,9 @@ from typing import Literal
 from pydantic import Field, model_validator
 
 from worker.common.field_errors import field_error
-from worker.common.specs import FrozenSpec
+from worker.families.serial.arm_inputs import ArmInputs, characteristic_length_field, plots_field
 from worker.families.serial.kinematics.arm import SerialArm
 from worker.families.serial.kinematics.voxel_grid import VoxelGrid, voxel_grid
-from worker.families.serial.robot_input import RobotSpec
-from worker.families.serial.specs import length_unit_field
 
 __all__ = ["MAX_MAP_CELLS", "MAX_SAMPLES", "SerialWorkspaceMapSpec"]
 
@@ -23,10 +21,9 @@ MAX_MAP_CELLS = 200_000_000
 MAX_VOXELS = 8_000_000
 
 
-class SerialWorkspaceMapSpec(FrozenSpec):
+class SerialWorkspaceMapSpec(ArmInputs):
     """Inputs of ``serial-workspace-map``."""
 
-    robot: RobotSpec = Field(..., description="The arm: a DH table or a URDF chain.")
     samples: int = Field(100_000, ge=64, le=MAX_SAMPLES, description="Joint samples to "
                          "draw within the joint limits (the grid sampler uses the largest "
                          "m**joints not above it).")  # fmt: skip
@@ -48,12 +45,8 @@ class SerialWorkspaceMapSpec(FrozenSpec):
                                          "relative change of the reached volume and of the "
                                          "mean reachability index over the last doubling "
                                          "of the samples for convergence.met.")  # fmt: skip
-    characteristic_length: float | None = Field(
-        None, gt=0.0, le=1e6, description="Divides the Jacobian's linear rows before the "
-        "inverse condition number (length_unit); null: unscaled."
-    )  # fmt: skip
-    length_unit: str = length_unit_field()
-    plots: bool = Field(True, description="Render the PNG/SVG plots. false: the result only.")
+    characteristic_length: float | None = characteristic_length_field()
+    plots: bool = plots_field()
 
     @model_validator(mode="after")
     def _bounded_grid(self) -> SerialWorkspaceMapSpec:
@@ -80,10 +73,6 @@ class SerialWorkspaceMapSpec(FrozenSpec):
                               "use larger voxels, fewer bins or bounds",
                               self.voxel_size)  # fmt: skip
         return self
-
-    def arm(self) -> SerialArm:
-        """The validated arm."""
-        return self.robot.arm(self.length_unit)
 
     def grid(self, arm: SerialArm) -> VoxelGrid:
         """The voxel (pixel) grid."""

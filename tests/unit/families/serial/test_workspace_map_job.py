@@ -44,9 +44,10 @@ def test_a_job_gives_its_summary_convergence_and_files() -> None:
     assert names == {f.name for f in PROCESS.files}
     summary, convergence = result["summary"], result["convergence"]
     assert result["grid"]["axes"] == ["x", "y"] and result["grid"]["cell"] == "pixel"
-    assert summary["reached_volume"] == pytest.approx(summary["reached_voxels"] * 4.0)
+    assert "reached_volume" not in summary  # a planar arm's map has an area
+    assert summary["reached_area"] == pytest.approx(summary["reached_voxels"] * 4.0)
     assert convergence["samples"] == [500, 1000, 2000, 4000]
-    assert convergence["reached_volume"][-1] == summary["reached_volume"]
+    assert convergence["reached_area"][-1] == summary["reached_area"]
     assert convergence["mean_reachability_index"][-1] == pytest.approx(
         summary["mean_reachability_index"]
     )

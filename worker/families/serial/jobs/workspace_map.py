@@ -32,16 +32,22 @@ from worker.families.serial.workspace_spec import SerialWorkspaceMapSpec
 __all__ = ["convergence_report", "run_serial_workspace_map"]
 
 
+def _size_key(result: WorkspaceMap) -> str:
+    """``reached_area`` for a planar arm's pixel map (length^2), else ``reached_volume``."""
+    return "reached_area" if len(result.grid.shape) == 2 else "reached_volume"
+
+
 def convergence_report(result: WorkspaceMap, tolerance: float) -> dict[str, Any]:
-    """Reached volume and mean index at N/8, N/4, N/2, N, their relative changes over
-    each doubling and whether the last doubling changed both by at most ``tolerance``."""
+    """Reached volume (area: a planar arm) and mean index at N/8, N/4, N/2, N, their
+    relative changes over each doubling and whether the last doubling changed both by at
+    most ``tolerance``."""
     cell = result.grid.cell_measure
     volume = tuple(v * cell for v in result.reached_voxels)
     volume_change = relative_changes(volume)
     index_change = relative_changes(result.mean_index)
     return {
         "samples": list(result.prefixes),
-        "reached_volume": list(volume),
+        _size_key(result): list(volume),
         "mean_reachability_index": list(result.mean_index),
         "relative_change_volume": volume_change,
         "relative_change_index": index_change,
@@ -67,7 +73,7 @@ def _summary(result: WorkspaceMap) -> dict[str, Any]:
         "samples_in_grid": int(result.samples.sum()),
         "voxels": int(reached.size),
         "reached_voxels": n,
-        "reached_volume": n * result.grid.cell_measure,
+        _size_key(result): n * result.grid.cell_measure,
         "mean_reachability_index": float(result.reachability_index[reached].mean()) if n else 0.0,
         "full_orientation_voxels": int((result.reachability_index[reached] >= 1.0).sum()),
         "manipulability_min": over_reached("manipulability_min", "min"),
