@@ -47,6 +47,8 @@ SMALL: dict[str, dict[str, Any]] = {
                          "beta_deg": {"start": 60, "stop": 90, "step": 15}},
     "spm-optimisation": {"workspace": {"tilt_max_deg": 45, "torsion_deg": [-180, 180]},
                          "starts": 1, "max_evaluations_per_start": 20},
+    "serial-workspace-map": {"robot": {"dh": [{"a": 1.0}, {"a": 1.0}]}, "samples": 2000,
+                             "voxel_size": 0.5, "orientation_bins": 8, "length_unit": "m"},
 }  # fmt: skip
 COLUMN = re.compile(r"^[A-Za-z][A-Za-z0-9_]* \[[^\[\],]+\]$")
 DEFINITIONS = {d.id: d for d in default_registry()}
