@@ -173,7 +173,7 @@ def test_cheapness_and_retention_are_recorded_at_submission(tmp_path: Path) -> N
     settings = WorkerSettings(result_ttl_s=3600)
     small = {"lengths": [2, 7, 9, 6], "ground": 1}
     job, _ = submit(store, registry, settings, "fourbar-grashof", small)
-    big = {"links": [15, 14, 8], "grid": {"points_per_axis": 201}}
+    big = {"links": [15, 14, 8], "grid": {"points_per_axis": 501}}
     heavy, _ = submit(store, registry, settings, "planar3r-dexterity-map", big, retention_s=60)
     row = store._one(
         store._conn(),
