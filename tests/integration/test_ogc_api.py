@@ -251,7 +251,7 @@ async def test_respond_async_respond_sync_and_wait(pool: httpx.AsyncClient) -> N
         headers={"Prefer": "respond-sync"},
     )
     assert r.status_code == 201 and "preference-applied" not in r.headers
-    big = {"links": [15, 14, 8], "grid": {"points_per_axis": 301}, "plots": False}
+    big = {"links": [15, 14, 8], "grid": {"points_per_axis": 501}, "plots": False}
     r = await pool.post("/ogc/processes/planar3r-dexterity-map/execution", json={"inputs": big})
     assert r.status_code == 201, r.text
     await pool.delete(r.headers["location"])
