@@ -57,7 +57,7 @@ def alive(pid: int) -> bool:
     try:  # a zombie awaiting its parent's wait() is gone for our purposes
         with open(f"/proc/{pid}/stat") as f:
             return f.read().split(")")[-1].split()[0] != "Z"
-    except FileNotFoundError:
+    except (FileNotFoundError, ProcessLookupError):  # it exited while we read
         return False
 
 
