@@ -6,7 +6,6 @@ sees it succeed on its job page.  Nothing may leave 127.0.0.1 (tests/browser.py)
 from __future__ import annotations
 
 import re
-import time
 from collections.abc import Iterator
 from pathlib import Path
 from typing import Any
@@ -15,6 +14,7 @@ import pytest
 
 from tests.browser import open_page
 from tests.integration.servers import Deployment, deployment
+from tests.integration.test_workflow_browser import finished
 
 pytestmark = pytest.mark.integration
 
@@ -26,16 +26,6 @@ OBJECTIVE = "indices.rms_inverse_condition"
 def server(tmp_path_factory: pytest.TempPathFactory) -> Iterator[Deployment]:
     with deployment("embedded", tmp_path_factory.mktemp("builder"), workers=2) as dep:
         yield dep
-
-
-def finished(server: Deployment, job_id: str, timeout: float = 120) -> dict[str, Any]:
-    deadline = time.monotonic() + timeout
-    while time.monotonic() < deadline:
-        status: dict[str, Any] = server.client.get(f"/v1/jobs/{job_id}").json()
-        if status["status"] in ("successful", "failed", "dismissed"):
-            return status
-        time.sleep(0.2)
-    raise AssertionError(f"job {job_id} did not finish in {timeout} s")
 
 
 def choose(page: Any, select: str, value: str, button: str, javascript: bool) -> None:
